@@ -1,0 +1,144 @@
+//! Typed errors: every invalid input is rejected at construction with the field it
+//! concerns, so a prediction never starts from a value it cannot handle.
+
+use core::fmt;
+
+/// Result alias for the crate.
+pub type Result<T> = core::result::Result<T, Error>;
+
+/// An input quantity, named in errors.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Field {
+    /// Cue-ball speed before impact `U_i` (m/s).
+    Speed,
+    /// Cut angle `φ` (rad or degrees, as given).
+    CutAngle,
+    /// Cue-ball velocity component along `x` (m/s).
+    VelocityX,
+    /// Cue-ball velocity component along `y` (m/s).
+    VelocityY,
+    /// Cue-ball angular velocity component `ω_x` (rad/s).
+    SpinX,
+    /// Cue-ball angular velocity component `ω_y` (rad/s).
+    SpinY,
+    /// Cue-ball angular velocity component `ω_z` (rad/s).
+    SpinZ,
+    /// Ball–ball friction coefficient `μ`.
+    Friction,
+    /// Energetic coefficient of restitution `e*`.
+    Restitution,
+    /// Object-ball/table static friction coefficient `μ_s`.
+    TableFriction,
+    /// Ball radius `R` (m).
+    Radius,
+    /// Ball mass `M` (kg).
+    Mass,
+}
+
+impl Field {
+    /// Short name as used by the CLI and the protocol.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Field::Speed => "speed",
+            Field::CutAngle => "cut",
+            Field::VelocityX => "velocity.x",
+            Field::VelocityY => "velocity.y",
+            Field::SpinX => "spin.x",
+            Field::SpinY => "spin.y",
+            Field::SpinZ => "spin.z",
+            Field::Friction => "mu",
+            Field::Restitution => "restitution",
+            Field::TableFriction => "mu_s",
+            Field::Radius => "radius",
+            Field::Mass => "mass",
+        }
+    }
+
+    /// The accepted range, for messages.
+    pub const fn valid_range(self) -> &'static str {
+        match self {
+            Field::Speed => "(0, 100] m/s",
+            Field::CutAngle => "(-90, 90) degrees",
+            Field::VelocityX => "(0, 100] m/s (the cue ball must approach the object ball)",
+            Field::VelocityY => "[-100, 100] m/s",
+            Field::SpinX | Field::SpinY | Field::SpinZ => "[-10000, 10000] rad/s",
+            Field::Friction => "[0, 1]",
+            Field::Restitution => "[0, 1]",
+            Field::TableFriction => "[0, 1]",
+            Field::Radius => "[0.001, 1] m",
+            Field::Mass => "[0.001, 100] kg",
+        }
+    }
+}
+
+/// Everything that can go wrong. The core never panics and never returns NaN.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Error {
+    /// The value is NaN or infinite.
+    NotFinite {
+        /// Which input.
+        field: Field,
+    },
+    /// The value is finite but outside the accepted range ([`Field::valid_range`]).
+    OutOfRange {
+        /// Which input.
+        field: Field,
+        /// The rejected value.
+        value: f32,
+    },
+    /// A computed output was not finite. Guarded against by construction and never
+    /// observed on the test grids; reported rather than returned as NaN.
+    NumericalFailure,
+}
+
+impl Error {
+    /// The input the error concerns, if any.
+    pub const fn field(&self) -> Option<Field> {
+        match self {
+            Error::NotFinite { field } | Error::OutOfRange { field, .. } => Some(*field),
+            Error::NumericalFailure => None,
+        }
+    }
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::NotFinite { field } => write!(f, "{} must be a finite number", field.name()),
+            Error::OutOfRange { field, value } => {
+                write!(f, "{} = {} is outside {}", field.name(), value, field.valid_range())
+            }
+            Error::NumericalFailure => f.write_str("internal numerical failure (non-finite result)"),
+        }
+    }
+}
+
+/// Check `value` is finite and within `[min, max]` (or `(min, max]` when
+/// `min_exclusive`).
+pub(crate) fn check(field: Field, value: f32, min: f32, max: f32, min_exclusive: bool) -> Result<f32> {
+    if !crate::math::is_finite(value) {
+        return Err(Error::NotFinite { field });
+    }
+    let above_min = if min_exclusive { value > min } else { value >= min };
+    if above_min && value <= max {
+        Ok(value)
+    } else {
+        Err(Error::OutOfRange { field, value })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn check_rejects_nan_inf_and_bounds() {
+        assert_eq!(check(Field::Mass, f32::NAN, 0.0, 1.0, false), Err(Error::NotFinite { field: Field::Mass }));
+        assert_eq!(check(Field::Mass, f32::INFINITY, 0.0, 1.0, false), Err(Error::NotFinite { field: Field::Mass }));
+        assert_eq!(check(Field::Mass, 0.0, 0.0, 1.0, true), Err(Error::OutOfRange { field: Field::Mass, value: 0.0 }));
+        assert_eq!(check(Field::Mass, 0.0, 0.0, 1.0, false), Ok(0.0));
+        assert_eq!(check(Field::Mass, 1.5, 0.0, 1.0, false), Err(Error::OutOfRange { field: Field::Mass, value: 1.5 }));
+    }
+}

@@ -1,0 +1,44 @@
+//! The seed's first-order closed forms, eqs. (52)–(54), with erratum E1.
+//!
+//! Per unit mass, with approach speed `a = U_i cos φ`, frictionless normal impulse
+//! `p₀ = (1 + e*) a / 2` (m/s) and the initial slip direction `θ₀` of eqs. (11)–(13)
+//! (`cos θ₀ = −v_y0 / v_∥0`, `sin θ₀ = −v_z0 / v_∥0`, erratum E2 applied):
+//!
+//! * friction impulse on the object ball `j = μ p₀ (cos θ₀, sin θ₀)` (eq. (57) at first
+//!   order);
+//! * table friction on the object ball `X = μ_s |j_z|` when it is pressed (`θ₀ < 0`);
+//! * normal impulse `p_f = p₀ (1 − μ μ_s sin θ₀ / 2)` (eq. (50)).
+//!
+//! Assembled by [`Outcome::from_impulses`] this reproduces (52), (53) and (54) with
+//! E1's corrected object-ball spin `Ω_y = μ(1+e)/(2ν) · U cos φ / R · (1 − μ_s) sin θ₀`.
+//! The model assumes the contact slides throughout; see `kim_grip` for the fix.
+
+use crate::impact::Impact;
+use crate::math;
+use crate::outcome::{Outcome, Regime};
+use crate::params::Params;
+
+pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
+    let mu = params.mu();
+    let approach = impact.velocity().x;
+    let frictionless_normal = 0.5 * (1.0 + params.restitution()) * approach;
+    let (slip_y, slip_z) = impact.initial_slip(params.radius());
+    let scale = math::abs(slip_y).max(math::abs(slip_z));
+    if mu == 0.0 || scale == 0.0 {
+        // No friction, or no slip and so no friction direction (exact gearing).
+        let regime = if mu == 0.0 { Regime::Frictionless } else { Regime::Gripping };
+        return Outcome::from_impulses(params, impact, frictionless_normal, 0.0, 0.0, 0.0, regime);
+    }
+    // Unit slip direction, scaled first so that tiny slips cannot underflow.
+    let (unit_y, unit_z) = (slip_y / scale, slip_z / scale);
+    let inv_norm = 1.0 / math::sqrt(unit_y * unit_y + unit_z * unit_z);
+    let cos_theta0 = -unit_y * inv_norm;
+    let sin_theta0 = -unit_z * inv_norm;
+    let friction = mu * frictionless_normal;
+    let (j_y, j_z) = (friction * cos_theta0, friction * sin_theta0);
+    // μ_s acts only through the pressed object ball: μ_s Θ(−θ₀).
+    let mu_s = if sin_theta0 < 0.0 { params.mu_s() } else { 0.0 };
+    let table = mu_s * math::abs(j_z);
+    let normal = frictionless_normal * (1.0 - 0.5 * mu * mu_s * sin_theta0);
+    Outcome::from_impulses(params, impact, normal, j_y, j_z, table, Regime::Sliding)
+}

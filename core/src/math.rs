@@ -1,0 +1,133 @@
+//! The one math shim: every floating-point function the core calls goes through here.
+//!
+//! Backends are chosen by Cargo feature: `libm` (default, correctly rounded where it
+//! matters) or `micromath` (smaller and faster, approximate). Exactly one must be
+//! enabled. On an FPU-equipped Cortex-M (`thumbv7em-none-eabihf`) the square root is
+//! the hardware `vsqrt.f32` instruction whatever the backend: it is exact (IEEE 754
+//! correctly rounded) and about 14 cycles, while `libm::sqrtf` is a software loop.
+//!
+//! Only [`sqrt`] and [`abs`] are on the hot path; the trigonometric functions are
+//! used to build inputs from angles and to report angles, never inside a collision.
+
+#[cfg(all(feature = "libm", feature = "micromath"))]
+compile_error!("cuesight: enable exactly one math backend feature: `libm` or `micromath`, not both");
+#[cfg(not(any(feature = "libm", feature = "micromath")))]
+compile_error!("cuesight: enable one math backend feature: `libm` (default) or `micromath`");
+
+#[cfg(feature = "micromath")]
+use micromath::F32Ext as _;
+
+/// Square root of `x` (`x ≥ 0`; returns NaN for negative input like IEEE `sqrt`).
+#[inline(always)]
+pub fn sqrt(x: f32) -> f32 {
+    #[cfg(all(target_arch = "arm", target_feature = "vfp2"))]
+    {
+        let root: f32;
+        // SAFETY: `vsqrt.f32` is a pure register-to-register FPU instruction with no
+        // memory access or side effect; the target has a single-precision FPU.
+        #[allow(unsafe_code)]
+        unsafe {
+            core::arch::asm!("vsqrt.f32 {0}, {1}", lateout(sreg) root, in(sreg) x,
+                options(pure, nomem, nostack, preserves_flags));
+        }
+        root
+    }
+    #[cfg(not(all(target_arch = "arm", target_feature = "vfp2")))]
+    {
+        #[cfg(feature = "libm")]
+        {
+            libm::sqrtf(x)
+        }
+        #[cfg(feature = "micromath")]
+        {
+            x.sqrt()
+        }
+    }
+}
+
+/// Absolute value (bit operation: exact, no call).
+#[inline(always)]
+pub fn abs(x: f32) -> f32 {
+    f32::from_bits(x.to_bits() & 0x7fff_ffff)
+}
+
+/// Sine of `x` (radians). Input construction only.
+#[inline]
+pub fn sin(x: f32) -> f32 {
+    #[cfg(feature = "libm")]
+    {
+        libm::sinf(x)
+    }
+    #[cfg(feature = "micromath")]
+    {
+        x.sin()
+    }
+}
+
+/// Cosine of `x` (radians). Input construction only.
+#[inline]
+pub fn cos(x: f32) -> f32 {
+    #[cfg(feature = "libm")]
+    {
+        libm::cosf(x)
+    }
+    #[cfg(feature = "micromath")]
+    {
+        x.cos()
+    }
+}
+
+/// Four-quadrant arctangent of `y / x` in radians, in `[-π, π]`. Reporting only.
+#[inline]
+pub fn atan2(y: f32, x: f32) -> f32 {
+    #[cfg(feature = "libm")]
+    {
+        libm::atan2f(y, x)
+    }
+    #[cfg(feature = "micromath")]
+    {
+        y.atan2(x)
+    }
+}
+
+/// `true` when `x` is neither NaN nor infinite.
+#[inline(always)]
+pub fn is_finite(x: f32) -> bool {
+    // Exponent bits all ones means NaN or ±Inf.
+    (x.to_bits() & 0x7f80_0000) != 0x7f80_0000
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sqrt_is_exact_on_squares_and_zero() {
+        assert_eq!(sqrt(0.0), 0.0);
+        assert_eq!(sqrt(16.0), 4.0);
+        assert_eq!(sqrt(2.25), 1.5);
+    }
+
+    #[test]
+    fn abs_clears_only_the_sign() {
+        assert_eq!(abs(-2.5), 2.5);
+        assert_eq!(abs(2.5), 2.5);
+        assert_eq!(abs(-0.0).to_bits(), 0.0f32.to_bits());
+    }
+
+    #[test]
+    fn is_finite_rejects_nan_and_infinities() {
+        assert!(is_finite(1.0e38));
+        assert!(is_finite(-1.0e-45));
+        assert!(!is_finite(f32::NAN));
+        assert!(!is_finite(f32::INFINITY));
+        assert!(!is_finite(f32::NEG_INFINITY));
+    }
+
+    #[test]
+    fn atan2_quadrants() {
+        let quarter = core::f32::consts::FRAC_PI_2;
+        assert!((atan2(1.0, 0.0) - quarter).abs() < 1e-6);
+        assert!((atan2(-1.0, 0.0) + quarter).abs() < 1e-6);
+    }
+}

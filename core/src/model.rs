@@ -1,0 +1,59 @@
+//! Model selection and the single entry point [`collide`].
+
+use crate::error::{Error, Result};
+use crate::impact::Impact;
+use crate::outcome::Outcome;
+use crate::params::Params;
+
+/// Which collision model to evaluate.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Model {
+    /// Frictionless, perfectly elastic (`μ = 0`, `e* = 1` whatever `Params` say):
+    /// the normal velocity is exchanged, spins are untouched.
+    Ideal,
+    /// The seed's first-order closed forms, eqs. (52)–(54), with erratum E1 applied.
+    /// Assumes sliding for the whole impact: wrong where the contact grips.
+    Kim,
+    /// `Kim` plus a gripping branch (erratum E6) and a second-order slip-direction
+    /// correction; continuous across the slide/grip boundary. The model to use.
+    KimGrip,
+}
+
+impl Model {
+    /// Every model, cheapest first.
+    pub const ALL: [Model; 3] = [Model::Ideal, Model::Kim, Model::KimGrip];
+
+    /// Lower-case, hyphenated name (`ideal`, `kim`, `kim-grip`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Model::Ideal => "ideal",
+            Model::Kim => "kim",
+            Model::KimGrip => "kim-grip",
+        }
+    }
+
+    /// Parse a name as printed by [`Model::name`].
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+}
+
+/// Predict the outcome of the cue ball described by `impact` hitting a resting object
+/// ball, with `params`, using `model`.
+///
+/// Inputs are validated by their constructors, so the only error is
+/// [`Error::NumericalFailure`], a guard that turns any non-finite result into an
+/// error instead of a NaN (never observed on the test grids).
+pub fn collide(params: &Params, impact: &Impact, model: Model) -> Result<Outcome> {
+    let outcome = match model {
+        Model::Ideal => crate::ideal::collide(params, impact),
+        Model::Kim => crate::kim::collide(params, impact),
+        Model::KimGrip => crate::kim_grip::collide(params, impact),
+    };
+    if outcome.is_finite() {
+        Ok(outcome)
+    } else {
+        Err(Error::NumericalFailure)
+    }
+}

@@ -1,0 +1,159 @@
+//! What a collision produces: both balls' post-impact state, the impulses that made
+//! it, and the contact regime.
+
+use crate::impact::Impact;
+use crate::math;
+use crate::params::Params;
+use crate::vector::Vec3;
+use crate::NU;
+
+/// Linear and angular velocity of one ball just after the impact.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct BallState {
+    /// Centre velocity (m/s), collision frame; `z > 0` means the ball leaves the table.
+    pub velocity: Vec3,
+    /// Angular velocity (rad/s), collision frame.
+    pub spin: Vec3,
+}
+
+/// How the ball–ball contact behaved during the impact.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Regime {
+    /// No friction acted (μ = 0, or the `Ideal` model).
+    Frictionless,
+    /// The contact points slid over each other for the whole impact (seed §3–4).
+    Sliding,
+    /// The slip vanished during the impact and the contact gripped (erratum E6); this
+    /// includes contacts with no initial slip at all (exact gearing).
+    Gripping,
+}
+
+impl Regime {
+    /// Lower-case name (`frictionless`, `sliding`, `gripping`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Regime::Frictionless => "frictionless",
+            Regime::Sliding => "sliding",
+            Regime::Gripping => "gripping",
+        }
+    }
+}
+
+/// Impulses exchanged during the impact (N·s).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Impulses {
+    /// Ball–ball normal impulse `p_f` on the object ball, along `+x`.
+    pub normal: f32,
+    /// Ball–ball friction impulse on the object ball; `x` is always zero.
+    pub friction: Vec3,
+    /// Table friction impulse on the object ball, along `−x` (`μ_s` × its table normal
+    /// impulse); zero unless the object ball is pressed into the table (topspin).
+    pub table_friction: f32,
+}
+
+/// Result of one collision.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Outcome {
+    /// Cue ball after the impact.
+    pub cue_ball: BallState,
+    /// Object ball after the impact.
+    pub object_ball: BallState,
+    /// Contact regime that applied.
+    pub regime: Regime,
+    /// Impulses exchanged.
+    pub impulses: Impulses,
+}
+
+impl Outcome {
+    /// Assemble both balls' final states from the impulses, all given per unit mass
+    /// (m/s): normal impulse `normal`, friction impulse on the object ball `(0, j_y,
+    /// j_z)`, and table friction `table` on the object ball along `−x`.
+    ///
+    /// This is plain rigid-body bookkeeping (`M ΔV = ΣJ`, `I Δω = Σ r × J`, seed eqs.
+    /// (17)–(18) with erratum E1): the ball–ball contact is at `+R x̂` from the cue
+    /// ball and `−R x̂` from the object ball; the table acts at `−R ẑ` and only pushes
+    /// up, so whichever ball the vertical friction presses down keeps `v_z = 0` and
+    /// the other leaves the table with `v_z = |j_z|`.
+    pub(crate) fn from_impulses(
+        params: &Params,
+        impact: &Impact,
+        normal: f32,
+        j_y: f32,
+        j_z: f32,
+        table: f32,
+        regime: Regime,
+    ) -> Self {
+        let radius = params.radius();
+        let mass = params.mass();
+        // Δω per unit specific impulse at the contact: R / (ν M R²) · M = 1 / (ν R).
+        let spin_per_impulse = 1.0 / (NU * radius);
+        let u = impact.velocity();
+        let w = impact.spin();
+        let cue_velocity = Vec3::new(u.x - normal, u.y - j_y, if j_z < 0.0 { -j_z } else { 0.0 });
+        let object_velocity = Vec3::new(normal - table, j_y, if j_z > 0.0 { j_z } else { 0.0 });
+        // Cue ball: r × (−J) with r = R x̂ gives R (0, j_z, −j_y).
+        let cue_spin = w + Vec3::new(0.0, j_z, -j_y) * spin_per_impulse;
+        // Object ball: (−R x̂) × J gives the same; table friction (−R ẑ) × (−X x̂) = R X ŷ.
+        let object_spin = Vec3::new(0.0, j_z + table, -j_y) * spin_per_impulse;
+        Self {
+            cue_ball: BallState { velocity: cue_velocity, spin: cue_spin },
+            object_ball: BallState { velocity: object_velocity, spin: object_spin },
+            regime,
+            impulses: Impulses {
+                normal: normal * mass,
+                friction: Vec3::new(0.0, j_y * mass, j_z * mass),
+                table_friction: table * mass,
+            },
+        }
+    }
+
+    /// `true` when every number in the outcome is finite.
+    pub fn is_finite(&self) -> bool {
+        self.cue_ball.velocity.is_finite()
+            && self.cue_ball.spin.is_finite()
+            && self.object_ball.velocity.is_finite()
+            && self.object_ball.spin.is_finite()
+            && math::is_finite(self.impulses.normal)
+            && self.impulses.friction.is_finite()
+            && math::is_finite(self.impulses.table_friction)
+    }
+
+    /// Throw angle ψ (radians): direction of the object ball's horizontal velocity
+    /// from the line of centres, `atan2(V_y, V_x)` (seed eq. (55)). Positive when the
+    /// object ball is thrown towards `+y`.
+    pub fn throw_angle(&self) -> f32 {
+        let v = self.object_ball.velocity;
+        math::atan2(v.y, v.x)
+    }
+
+    /// Throw angle in degrees.
+    pub fn throw_angle_deg(&self) -> f32 {
+        self.throw_angle().to_degrees()
+    }
+
+    /// Cue-ball deflection ψ_c (radians) from the tangent line towards the line of
+    /// centres: `atan2(U_x, |U_y|)` of the horizontal velocity (seed eq. (56); TP A.5
+    /// calls it the cue-ball deviation). 90° for a head-on follow or stun shot.
+    pub fn cue_deflection(&self) -> f32 {
+        let u = self.cue_ball.velocity;
+        math::atan2(u.x, math::abs(u.y))
+    }
+
+    /// Cue-ball deflection in degrees.
+    pub fn cue_deflection_deg(&self) -> f32 {
+        self.cue_deflection().to_degrees()
+    }
+
+    /// Angle between the two balls' horizontal directions of travel (degrees).
+    pub fn separation_angle_deg(&self) -> f32 {
+        let u = self.cue_ball.velocity;
+        let v = self.object_ball.velocity;
+        let cross = u.x * v.y - u.y * v.x;
+        let dot = u.x * v.x + u.y * v.y;
+        math::atan2(math::abs(cross), dot).to_degrees()
+    }
+}

@@ -1,0 +1,109 @@
+//! Physical parameters of a collision, validated on construction.
+
+use crate::error::{check, Field, Result};
+
+/// Ball and contact parameters (seed §2, physics-notes §5).
+///
+/// Build with [`Params::new`] or start from [`Params::POOL`] and replace fields with
+/// the `with_*` methods; every constructor validates, so a `Params` value is always
+/// usable.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Params {
+    mu: f32,
+    restitution: f32,
+    mu_s: f32,
+    radius: f32,
+    mass: f32,
+}
+
+impl Params {
+    /// Pool defaults: μ = 0.05, e* = 0.95, μ_s = 0.3, R = 28.575 mm, M = 0.17 kg.
+    pub const POOL: Self = Self { mu: 0.05, restitution: 0.95, mu_s: 0.3, radius: 0.028575, mass: 0.17 };
+
+    /// Validate and build.
+    ///
+    /// * `mu` — ball–ball friction coefficient μ, in `[0, 1]`;
+    /// * `restitution` — Stronge's energetic coefficient e* (seed eq. (37)), in `[0, 1]`;
+    /// * `mu_s` — object-ball/table static friction μ_s, in `[0, 1]`;
+    /// * `radius` — R in metres, in `[0.001, 1]`;
+    /// * `mass` — M in kilograms, in `[0.001, 100]`.
+    pub fn new(mu: f32, restitution: f32, mu_s: f32, radius: f32, mass: f32) -> Result<Self> {
+        Ok(Self {
+            mu: check(Field::Friction, mu, 0.0, 1.0, false)?,
+            restitution: check(Field::Restitution, restitution, 0.0, 1.0, false)?,
+            mu_s: check(Field::TableFriction, mu_s, 0.0, 1.0, false)?,
+            radius: check(Field::Radius, radius, 0.001, 1.0, false)?,
+            mass: check(Field::Mass, mass, 0.001, 100.0, false)?,
+        })
+    }
+
+    /// Replace μ (validated).
+    pub fn with_mu(self, mu: f32) -> Result<Self> {
+        Self::new(mu, self.restitution, self.mu_s, self.radius, self.mass)
+    }
+
+    /// Replace e* (validated).
+    pub fn with_restitution(self, restitution: f32) -> Result<Self> {
+        Self::new(self.mu, restitution, self.mu_s, self.radius, self.mass)
+    }
+
+    /// Replace μ_s (validated).
+    pub fn with_mu_s(self, mu_s: f32) -> Result<Self> {
+        Self::new(self.mu, self.restitution, mu_s, self.radius, self.mass)
+    }
+
+    /// Replace R and M (validated).
+    pub fn with_ball(self, radius: f32, mass: f32) -> Result<Self> {
+        Self::new(self.mu, self.restitution, self.mu_s, radius, mass)
+    }
+
+    /// Ball–ball friction coefficient μ.
+    pub const fn mu(&self) -> f32 {
+        self.mu
+    }
+    /// Energetic coefficient of restitution e*.
+    pub const fn restitution(&self) -> f32 {
+        self.restitution
+    }
+    /// Object-ball/table static friction μ_s.
+    pub const fn mu_s(&self) -> f32 {
+        self.mu_s
+    }
+    /// Ball radius R (m).
+    pub const fn radius(&self) -> f32 {
+        self.radius
+    }
+    /// Ball mass M (kg).
+    pub const fn mass(&self) -> f32 {
+        self.mass
+    }
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Self::POOL
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Error;
+
+    #[test]
+    fn pool_defaults_validate() {
+        let p = Params::POOL;
+        assert_eq!(Params::new(p.mu(), p.restitution(), p.mu_s(), p.radius(), p.mass()), Ok(p));
+    }
+
+    #[test]
+    fn each_field_is_named_in_its_error() {
+        let p = Params::POOL;
+        assert_eq!(p.with_mu(-0.1).unwrap_err().field(), Some(Field::Friction));
+        assert_eq!(p.with_restitution(1.01).unwrap_err().field(), Some(Field::Restitution));
+        assert_eq!(p.with_mu_s(f32::NAN).unwrap_err(), Error::NotFinite { field: Field::TableFriction });
+        assert_eq!(p.with_ball(0.0, 0.17).unwrap_err().field(), Some(Field::Radius));
+        assert_eq!(p.with_ball(0.03, -1.0).unwrap_err().field(), Some(Field::Mass));
+    }
+}
