@@ -1,3 +1,4 @@
 //! Host side of cuesight (std): the f64 first-principles reference solver and helpers
 //! shared by the CLI and the test suites.
+pub mod grid;
 pub mod reference;
