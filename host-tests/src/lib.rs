@@ -2,3 +2,4 @@
 //! shared by the CLI and the test suites.
 pub mod grid;
 pub mod reference;
+pub mod report;
