@@ -1,5 +1,6 @@
 //! Host side of cuesight (std): the f64 first-principles reference solver and helpers
 //! shared by the CLI and the test suites.
+pub mod cli;
 pub mod grid;
 pub mod reference;
 pub mod report;

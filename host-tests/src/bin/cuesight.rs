@@ -1,1 +1,102 @@
-fn main() {}
+//! `cuesight` command line: predict what happens when a spinning cue ball hits a
+//! resting object ball. The clap interface lives here; the logic in
+//! [`cuesight_host::cli`].
+
+use std::process::ExitCode;
+
+use clap::{Args, Parser, Subcommand};
+use cuesight::Params;
+use cuesight_host::cli::{self, CollideRequest, ModelChoice, SpinInput};
+
+/// Predict what happens when a spinning cue ball hits a resting object ball.
+#[derive(Parser)]
+#[command(name = "cuesight", version, arg_required_else_help = false)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Predict both balls' velocities and spins just after the impact.
+    ///
+    /// Collision frame: x from the cue-ball centre to the object-ball centre, z up,
+    /// y = z × x. SI units: m, s, kg, rad/s; angles in degrees. Exit codes: 0 ok,
+    /// 1 invalid physical value, 2 usage error.
+    Collide(CollideArgs),
+}
+
+#[derive(Args)]
+struct CollideArgs {
+    /// Cue-ball speed before impact U (m/s).
+    #[arg(long, value_name = "U", allow_negative_numbers = true)]
+    speed: f32,
+    /// Cut angle φ in degrees, |φ| < 90 (velocity U (cos φ, sin φ, 0)).
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    cut: f32,
+    /// Cue-ball angular velocity in rad/s (topspin is WY > 0) [default: 0,0,0, stun].
+    #[arg(long, value_name = "WX,WY,WZ", allow_hyphen_values = true,
+          value_parser = cli::parse_spin, conflicts_with = "roll")]
+    spin: Option<[f32; 3]>,
+    /// Natural roll for the given velocity instead of --spin.
+    #[arg(long)]
+    roll: bool,
+    /// Ball–ball friction coefficient μ.
+    #[arg(long, default_value_t = Params::POOL.mu(), allow_negative_numbers = true)]
+    mu: f32,
+    /// Energetic coefficient of restitution e*.
+    #[arg(long, default_value_t = Params::POOL.restitution(), allow_negative_numbers = true)]
+    restitution: f32,
+    /// Object-ball/table static friction coefficient μ_s.
+    #[arg(long, default_value_t = Params::POOL.mu_s(), allow_negative_numbers = true)]
+    mu_s: f32,
+    /// Ball radius R (m).
+    #[arg(long, default_value_t = Params::POOL.radius(), allow_negative_numbers = true)]
+    radius: f32,
+    /// Ball mass M (kg).
+    #[arg(long, default_value_t = Params::POOL.mass(), allow_negative_numbers = true)]
+    mass: f32,
+    /// Model: ideal, kim, kim-grip or reference (f64 first-principles solver).
+    #[arg(long, default_value = "kim-grip", value_parser = cli::parse_model)]
+    model: ModelChoice,
+    /// Print one JSON object on one line instead of the summary.
+    #[arg(long)]
+    json: bool,
+}
+
+fn main() -> ExitCode {
+    let parsed = match Cli::try_parse() {
+        Ok(parsed) => parsed,
+        // --help and --version print to stdout and exit 0.
+        Err(error) if !error.use_stderr() => error.exit(),
+        Err(error) => {
+            eprintln!("error: {}", cli::usage_error_message(&error));
+            return ExitCode::from(cli::EXIT_USAGE);
+        }
+    };
+    let Command::Collide(args) = parsed.command;
+    let request = CollideRequest {
+        speed: args.speed,
+        cut_deg: args.cut,
+        spin: if args.roll {
+            SpinInput::Roll
+        } else {
+            SpinInput::Given(args.spin.unwrap_or([0.0; 3]))
+        },
+        mu: args.mu,
+        restitution: args.restitution,
+        mu_s: args.mu_s,
+        radius: args.radius,
+        mass: args.mass,
+        model: args.model,
+    };
+    match cli::collide(&request) {
+        Ok(report) if args.json => println!("{}", report.to_json()),
+        Ok(report) => println!("{report}"),
+        Err(error) => {
+            eprintln!("error: {error}");
+            return ExitCode::from(error.exit_code());
+        }
+    }
+    ExitCode::SUCCESS
+}
