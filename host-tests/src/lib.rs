@@ -1,6 +1,7 @@
 //! Host side of cuesight (std): the f64 first-principles reference solver and helpers
 //! shared by the CLI and the test suites.
 pub mod cli;
+pub mod compare;
 pub mod grid;
 pub mod reference;
 pub mod report;

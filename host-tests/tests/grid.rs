@@ -1,0 +1,110 @@
+//! `KimGrip` against the first-principles reference on the seeded ≥ 10,000-scene grid
+//! (foundation issue acceptance): max |Δv|/U ≤ 0.5 %, max R|Δω|/U ≤ 1 %, max throw
+//! error ≤ 0.25°; zero panics and zero non-finite outputs for every model; the
+//! reference creates no energy and balances y-momentum.
+//!
+//! The figures are printed and written to `$CARGO_TARGET_TMPDIR/grid-report.txt`.
+
+use cuesight::{collide, Model, Regime};
+use cuesight_host::compare::{reference, scene_error, Summary};
+use cuesight_host::grid::{scenes, Scene};
+use cuesight_host::reference::{ReferenceOutcome, ReferenceRegime};
+use std::fmt::Write as _;
+
+const SEED: u64 = 2024;
+const SCENES: usize = 10_000;
+
+struct Solved {
+    scene: Scene,
+    reference: ReferenceOutcome,
+}
+
+fn solved_grid() -> Vec<Solved> {
+    scenes(SEED, SCENES)
+        .into_iter()
+        .map(|scene| Solved { reference: reference(&scene).expect("grid scenes are valid reference input"), scene })
+        .collect()
+}
+
+#[test]
+fn grid_accuracy_and_invariants() {
+    let grid = solved_grid();
+    assert!(grid.len() >= 10_000);
+    let mut report = String::new();
+    let gripping = grid.iter().filter(|s| s.reference.regime == ReferenceRegime::Gripping).count();
+    writeln!(report, "grid seed {SEED}: {} scenes, {gripping} grip in the reference", grid.len()).unwrap();
+
+    // Every model: no error, finite outputs (the core turns non-finite into Err).
+    for model in Model::ALL {
+        for s in &grid {
+            let out = collide(&s.scene.params(), &s.scene.impact(), model);
+            assert!(out.is_ok(), "{model:?} failed on {:?}: {out:?}", s.scene);
+        }
+    }
+
+    let errors = |model: Model, filter: &dyn Fn(&Solved) -> bool| {
+        Summary::of(grid.iter().enumerate().filter(|(_, s)| filter(s)).map(|(i, s)| {
+            let out = collide(&s.scene.params(), &s.scene.impact(), model).unwrap();
+            (i, scene_error(&s.scene, &out, &s.reference))
+        }))
+    };
+    let all = |_: &Solved| true;
+    let sliding = |s: &Solved| s.reference.regime == ReferenceRegime::Sliding;
+    let grips = |s: &Solved| s.reference.regime == ReferenceRegime::Gripping;
+
+    let kim_grip = errors(Model::KimGrip, &all);
+    writeln!(report, "KimGrip, all:            {kim_grip}").unwrap();
+    writeln!(report, "KimGrip, sliding scenes: {}", errors(Model::KimGrip, &sliding)).unwrap();
+    writeln!(report, "KimGrip, gripping scenes: {}", errors(Model::KimGrip, &grips)).unwrap();
+    writeln!(report, "Kim, sliding scenes:     {}", errors(Model::Kim, &sliding)).unwrap();
+    writeln!(report, "Kim, gripping scenes:    {}", errors(Model::Kim, &grips)).unwrap();
+
+    let regime_mismatch = grid
+        .iter()
+        .filter(|s| {
+            let out = collide(&s.scene.params(), &s.scene.impact(), Model::KimGrip).unwrap();
+            (out.regime == Regime::Gripping) != (s.reference.regime == ReferenceRegime::Gripping)
+        })
+        .count();
+    writeln!(report, "KimGrip regime differs from the reference in {regime_mismatch} scenes (all at the boundary)")
+        .unwrap();
+
+    println!("{report}");
+    let path = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("grid-report.txt");
+    std::fs::write(&path, &report).expect("write grid report");
+
+    let worst = |k: usize| &grid[kim_grip.argmax[k]].scene;
+    assert!(kim_grip.max.velocity <= 0.005, "max |dv|/U {} at {:?}", kim_grip.max.velocity, worst(0));
+    assert!(kim_grip.max.spin <= 0.01, "max R|dw|/U {} at {:?}", kim_grip.max.spin, worst(1));
+    assert!(kim_grip.max.throw_deg <= 0.25, "max throw error {} at {:?}", kim_grip.max.throw_deg, worst(2));
+    // Regime flips may only happen where the two models sit on the boundary.
+    assert!(regime_mismatch * 50 < grid.len(), "{regime_mismatch} regime mismatches");
+}
+
+#[test]
+fn reference_creates_no_energy_and_balances_y_momentum() {
+    for s in solved_grid() {
+        let (m, r) = (s.scene.mass as f64, s.scene.radius as f64);
+        let before = cuesight_host::reference::kinetic_energy(
+            &cuesight_host::reference::BallState {
+                velocity: glam::DVec3::new(s.scene.velocity[0] as f64, s.scene.velocity[1] as f64, 0.0),
+                spin: cuesight_host::compare::widen(cuesight::Vec3::from_array(s.scene.spin)),
+            },
+            m,
+            r,
+        );
+        let after = s.reference.kinetic_energy(m, r);
+        assert!(after <= before * (1.0 + 1e-12), "energy created: {before} -> {after} in {:?}", s.scene);
+        // y-momentum changes only through the object ball's table friction.
+        let momentum_y = m * (s.reference.cue_ball.velocity.y + s.reference.object_ball.velocity.y);
+        let change = momentum_y - m * s.scene.velocity[1] as f64;
+        let table_y = s.reference.table_friction_impulse.y;
+        assert!(
+            (change - table_y).abs() <= 1e-12 * m * s.scene.speed(),
+            "y-momentum {change} vs table {table_y} in {:?}",
+            s.scene
+        );
+        // The table impulse can only be friction: bounded by μ_s times the pressing.
+        assert!(table_y.abs() <= s.scene.mu_s as f64 * s.reference.friction_impulse.z.abs() * (1.0 + 1e-9));
+    }
+}
