@@ -108,20 +108,38 @@ impl fmt::Display for Error {
         match self {
             Error::NotFinite { field } => write!(f, "{} must be a finite number", field.name()),
             Error::OutOfRange { field, value } => {
-                write!(f, "{} = {} is outside {}", field.name(), value, field.valid_range())
+                write!(
+                    f,
+                    "{} = {} is outside {}",
+                    field.name(),
+                    value,
+                    field.valid_range()
+                )
             }
-            Error::NumericalFailure => f.write_str("internal numerical failure (non-finite result)"),
+            Error::NumericalFailure => {
+                f.write_str("internal numerical failure (non-finite result)")
+            }
         }
     }
 }
 
 /// Check `value` is finite and within `[min, max]` (or `(min, max]` when
 /// `min_exclusive`).
-pub(crate) fn check(field: Field, value: f32, min: f32, max: f32, min_exclusive: bool) -> Result<f32> {
+pub(crate) fn check(
+    field: Field,
+    value: f32,
+    min: f32,
+    max: f32,
+    min_exclusive: bool,
+) -> Result<f32> {
     if !crate::math::is_finite(value) {
         return Err(Error::NotFinite { field });
     }
-    let above_min = if min_exclusive { value > min } else { value >= min };
+    let above_min = if min_exclusive {
+        value > min
+    } else {
+        value >= min
+    };
     if above_min && value <= max {
         Ok(value)
     } else {
@@ -135,10 +153,28 @@ mod tests {
 
     #[test]
     fn check_rejects_nan_inf_and_bounds() {
-        assert_eq!(check(Field::Mass, f32::NAN, 0.0, 1.0, false), Err(Error::NotFinite { field: Field::Mass }));
-        assert_eq!(check(Field::Mass, f32::INFINITY, 0.0, 1.0, false), Err(Error::NotFinite { field: Field::Mass }));
-        assert_eq!(check(Field::Mass, 0.0, 0.0, 1.0, true), Err(Error::OutOfRange { field: Field::Mass, value: 0.0 }));
+        assert_eq!(
+            check(Field::Mass, f32::NAN, 0.0, 1.0, false),
+            Err(Error::NotFinite { field: Field::Mass })
+        );
+        assert_eq!(
+            check(Field::Mass, f32::INFINITY, 0.0, 1.0, false),
+            Err(Error::NotFinite { field: Field::Mass })
+        );
+        assert_eq!(
+            check(Field::Mass, 0.0, 0.0, 1.0, true),
+            Err(Error::OutOfRange {
+                field: Field::Mass,
+                value: 0.0
+            })
+        );
         assert_eq!(check(Field::Mass, 0.0, 0.0, 1.0, false), Ok(0.0));
-        assert_eq!(check(Field::Mass, 1.5, 0.0, 1.0, false), Err(Error::OutOfRange { field: Field::Mass, value: 1.5 }));
+        assert_eq!(
+            check(Field::Mass, 1.5, 0.0, 1.0, false),
+            Err(Error::OutOfRange {
+                field: Field::Mass,
+                value: 1.5
+            })
+        );
     }
 }

@@ -29,21 +29,36 @@ impl Impact {
             check(Field::SpinY, spin[1], -MAX_SPIN, MAX_SPIN, false)?,
             check(Field::SpinZ, spin[2], -MAX_SPIN, MAX_SPIN, false)?,
         );
-        Ok(Self { velocity: Vec3::new(vx, vy, 0.0), spin })
+        Ok(Self {
+            velocity: Vec3::new(vx, vy, 0.0),
+            spin,
+        })
     }
 
     /// From speed `U_i` (m/s), cut angle `φ` (radians, `|φ| < π/2`) and spin (rad/s).
     pub fn from_cut(speed: f32, cut_angle: f32, spin: [f32; 3]) -> Result<Self> {
         let speed = check(Field::Speed, speed, 0.0, MAX_SPEED, true)?;
-        let cut = check(Field::CutAngle, cut_angle, -core::f32::consts::FRAC_PI_2, core::f32::consts::FRAC_PI_2, true)?;
+        let cut = check(
+            Field::CutAngle,
+            cut_angle,
+            -core::f32::consts::FRAC_PI_2,
+            core::f32::consts::FRAC_PI_2,
+            true,
+        )?;
         if cut >= core::f32::consts::FRAC_PI_2 {
-            return Err(Error::OutOfRange { field: Field::CutAngle, value: cut_angle });
+            return Err(Error::OutOfRange {
+                field: Field::CutAngle,
+                value: cut_angle,
+            });
         }
         let vx = speed * math::cos(cut);
         let vy = speed * math::sin(cut);
         if vx <= 0.0 {
             // Grazing to within f32 resolution: no approach along the line of centres.
-            return Err(Error::OutOfRange { field: Field::CutAngle, value: cut_angle });
+            return Err(Error::OutOfRange {
+                field: Field::CutAngle,
+                value: cut_angle,
+            });
         }
         Self::from_velocity([vx, vy], spin)
     }
@@ -52,12 +67,19 @@ impl Impact {
     pub fn from_cut_degrees(speed: f32, cut_angle_deg: f32, spin: [f32; 3]) -> Result<Self> {
         let deg = check(Field::CutAngle, cut_angle_deg, -90.0, 90.0, true)?;
         if deg >= 90.0 {
-            return Err(Error::OutOfRange { field: Field::CutAngle, value: cut_angle_deg });
+            return Err(Error::OutOfRange {
+                field: Field::CutAngle,
+                value: cut_angle_deg,
+            });
         }
         Self::from_cut(speed, deg.to_radians(), spin).map_err(|e| match e {
-            Error::OutOfRange { field: Field::CutAngle, .. } => {
-                Error::OutOfRange { field: Field::CutAngle, value: cut_angle_deg }
-            }
+            Error::OutOfRange {
+                field: Field::CutAngle,
+                ..
+            } => Error::OutOfRange {
+                field: Field::CutAngle,
+                value: cut_angle_deg,
+            },
             other => other,
         })
     }
@@ -88,7 +110,10 @@ impl Impact {
     /// tangential part `(v_y0, v_z0)` (m/s), seed eq. (11):
     /// `v_y0 = −U_i sin φ − R ω_z`, `v_z0 = R ω_y`.
     pub fn initial_slip(&self, radius: f32) -> (f32, f32) {
-        (-self.velocity.y - radius * self.spin.z, radius * self.spin.y)
+        (
+            -self.velocity.y - radius * self.spin.z,
+            radius * self.spin.y,
+        )
     }
 }
 
@@ -106,10 +131,35 @@ mod tests {
     #[test]
     fn cut_angle_limits() {
         assert!(Impact::from_cut_degrees(1.0, 89.9, [0.0; 3]).is_ok());
-        assert_eq!(Impact::from_cut_degrees(1.0, 90.0, [0.0; 3]).unwrap_err().field(), Some(Field::CutAngle));
-        assert_eq!(Impact::from_cut_degrees(1.0, -95.0, [0.0; 3]).unwrap_err().field(), Some(Field::CutAngle));
-        assert_eq!(Impact::from_cut_degrees(0.0, 10.0, [0.0; 3]).unwrap_err().field(), Some(Field::Speed));
-        assert_eq!(Impact::from_velocity([-1.0, 0.0], [0.0; 3]).unwrap_err().field(), Some(Field::VelocityX));
-        assert_eq!(Impact::from_velocity([1.0, 0.0], [0.0, f32::NAN, 0.0]).unwrap_err().field(), Some(Field::SpinY));
+        assert_eq!(
+            Impact::from_cut_degrees(1.0, 90.0, [0.0; 3])
+                .unwrap_err()
+                .field(),
+            Some(Field::CutAngle)
+        );
+        assert_eq!(
+            Impact::from_cut_degrees(1.0, -95.0, [0.0; 3])
+                .unwrap_err()
+                .field(),
+            Some(Field::CutAngle)
+        );
+        assert_eq!(
+            Impact::from_cut_degrees(0.0, 10.0, [0.0; 3])
+                .unwrap_err()
+                .field(),
+            Some(Field::Speed)
+        );
+        assert_eq!(
+            Impact::from_velocity([-1.0, 0.0], [0.0; 3])
+                .unwrap_err()
+                .field(),
+            Some(Field::VelocityX)
+        );
+        assert_eq!(
+            Impact::from_velocity([1.0, 0.0], [0.0, f32::NAN, 0.0])
+                .unwrap_err()
+                .field(),
+            Some(Field::SpinY)
+        );
     }
 }

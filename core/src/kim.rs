@@ -26,7 +26,11 @@ pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
     let scale = math::abs(slip_y).max(math::abs(slip_z));
     if mu == 0.0 || scale == 0.0 {
         // No friction, or no slip and so no friction direction (exact gearing).
-        let regime = if mu == 0.0 { Regime::Frictionless } else { Regime::Gripping };
+        let regime = if mu == 0.0 {
+            Regime::Frictionless
+        } else {
+            Regime::Gripping
+        };
         return Outcome::from_impulses(params, impact, frictionless_normal, 0.0, 0.0, 0.0, regime);
     }
     // Unit slip direction, scaled first so that tiny slips cannot underflow.

@@ -50,18 +50,30 @@ pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
     let (slip_y, slip_z) = impact.initial_slip(params.radius());
     let scale = math::abs(slip_y).max(math::abs(slip_z));
     if mu == 0.0 || scale == 0.0 {
-        let regime = if mu == 0.0 { Regime::Frictionless } else { Regime::Gripping };
+        let regime = if mu == 0.0 {
+            Regime::Frictionless
+        } else {
+            Regime::Gripping
+        };
         return Outcome::from_impulses(params, impact, frictionless_normal, 0.0, 0.0, 0.0, regime);
     }
 
     let object_pressed = slip_z > 0.0;
-    let k_z = if object_pressed { (2.0 + NU - params.mu_s()) / NU } else { (2.0 + NU) / NU };
+    let k_z = if object_pressed {
+        (2.0 + NU - params.mu_s()) / NU
+    } else {
+        (2.0 + NU) / NU
+    };
     let slip = TangentialSlip::new(slip_y, slip_z, scale, k_z);
 
     // Direction at the first-order budget, for the table-friction rate ρ.
     let first_budget = mu * frictionless_normal;
     let (_, first_dir_z) = slip.friction_direction(first_budget);
-    let table_rate = if object_pressed { mu * params.mu_s() * math::abs(first_dir_z) } else { 0.0 };
+    let table_rate = if object_pressed {
+        mu * params.mu_s() * math::abs(first_dir_z)
+    } else {
+        0.0
+    };
     let grip_normal = slip.stick_budget / mu; // p* (may be +inf for tiny μ: harmless)
     let normal = final_normal_impulse(approach, restitution, table_rate, grip_normal);
 
@@ -72,7 +84,11 @@ pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
     } else {
         (slip.stick_y, slip.stick_z, Regime::Gripping)
     };
-    let pressing_span = if normal < grip_normal { normal } else { grip_normal };
+    let pressing_span = if normal < grip_normal {
+        normal
+    } else {
+        grip_normal
+    };
     let table = table_rate * pressing_span;
     Outcome::from_impulses(params, impact, normal, j_y, j_z, table, regime)
 }
@@ -114,7 +130,11 @@ impl TangentialSlip {
     /// budget `budget = μ p` (m/s), `budget ≤ s*` (clamped).
     fn friction_direction(&self, budget: f32) -> (f32, f32) {
         // f = S / s* in [0, 1], written so that no 0/0 or ∞/∞ can occur.
-        let fraction = if budget >= self.stick_budget { 1.0 } else { budget / self.stick_budget };
+        let fraction = if budget >= self.stick_budget {
+            1.0
+        } else {
+            budget / self.stick_budget
+        };
         // α / |v₀| in units where |v₀| = unit_norm · scale; σ = s*/|v₀|.
         let sigma = self.stick_budget_per_norm();
         let alpha_per_norm =
@@ -153,7 +173,11 @@ fn final_normal_impulse(a: f32, e: f32, rho: f32, grip: f32) -> f32 {
         let rest = 0.5 * e * e * a * compression_end - 0.5 * v_star * (grip - compression_end);
         let rest = if rest > 0.0 { rest } else { 0.0 };
         let denominator = v_star + math::sqrt(v_star * v_star + 4.0 * rest);
-        let extra = if denominator > 0.0 { 2.0 * rest / denominator } else { 0.0 };
+        let extra = if denominator > 0.0 {
+            2.0 * rest / denominator
+        } else {
+            0.0
+        };
         grip + extra
     } else {
         // Grip during compression: slope 2 from p*, compression ends at p_c, then
@@ -162,7 +186,11 @@ fn final_normal_impulse(a: f32, e: f32, rho: f32, grip: f32) -> f32 {
         let work_at_grip = -a * grip + 0.5 * slope * grip * grip;
         let compression_end = grip - 0.5 * v_star;
         let compression_work = work_at_grip - 0.25 * v_star * v_star;
-        let depth = if compression_work < 0.0 { -compression_work } else { 0.0 };
+        let depth = if compression_work < 0.0 {
+            -compression_work
+        } else {
+            0.0
+        };
         compression_end + e * math::sqrt(depth)
     }
 }
@@ -198,7 +226,10 @@ mod tests {
     fn direction_meets_stick_impulse_at_the_boundary() {
         let slip = TangentialSlip::new(-0.7, 0.5, 0.7, 5.0);
         let (dy, dz) = slip.friction_direction(slip.stick_budget);
-        let (sy, sz) = (slip.stick_y / slip.stick_budget, slip.stick_z / slip.stick_budget);
+        let (sy, sz) = (
+            slip.stick_y / slip.stick_budget,
+            slip.stick_z / slip.stick_budget,
+        );
         assert!((dy - sy).abs() < 1e-6 && (dz - sz).abs() < 1e-6);
     }
 }

@@ -10,7 +10,9 @@
 //! used to build inputs from angles and to report angles, never inside a collision.
 
 #[cfg(all(feature = "libm", feature = "micromath"))]
-compile_error!("cuesight: enable exactly one math backend feature: `libm` or `micromath`, not both");
+compile_error!(
+    "cuesight: enable exactly one math backend feature: `libm` or `micromath`, not both"
+);
 #[cfg(not(any(feature = "libm", feature = "micromath")))]
 compile_error!("cuesight: enable one math backend feature: `libm` (default) or `micromath`");
 

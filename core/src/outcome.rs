@@ -100,8 +100,14 @@ impl Outcome {
         // Object ball: (−R x̂) × J gives the same; table friction (−R ẑ) × (−X x̂) = R X ŷ.
         let object_spin = Vec3::new(0.0, j_z + table, -j_y) * spin_per_impulse;
         Self {
-            cue_ball: BallState { velocity: cue_velocity, spin: cue_spin },
-            object_ball: BallState { velocity: object_velocity, spin: object_spin },
+            cue_ball: BallState {
+                velocity: cue_velocity,
+                spin: cue_spin,
+            },
+            object_ball: BallState {
+                velocity: object_velocity,
+                spin: object_spin,
+            },
             regime,
             impulses: Impulses {
                 normal: normal * mass,

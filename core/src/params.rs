@@ -19,7 +19,13 @@ pub struct Params {
 
 impl Params {
     /// Pool defaults: μ = 0.05, e* = 0.95, μ_s = 0.3, R = 28.575 mm, M = 0.17 kg.
-    pub const POOL: Self = Self { mu: 0.05, restitution: 0.95, mu_s: 0.3, radius: 0.028575, mass: 0.17 };
+    pub const POOL: Self = Self {
+        mu: 0.05,
+        restitution: 0.95,
+        mu_s: 0.3,
+        radius: 0.028575,
+        mass: 0.17,
+    };
 
     /// Validate and build.
     ///
@@ -94,16 +100,33 @@ mod tests {
     #[test]
     fn pool_defaults_validate() {
         let p = Params::POOL;
-        assert_eq!(Params::new(p.mu(), p.restitution(), p.mu_s(), p.radius(), p.mass()), Ok(p));
+        assert_eq!(
+            Params::new(p.mu(), p.restitution(), p.mu_s(), p.radius(), p.mass()),
+            Ok(p)
+        );
     }
 
     #[test]
     fn each_field_is_named_in_its_error() {
         let p = Params::POOL;
         assert_eq!(p.with_mu(-0.1).unwrap_err().field(), Some(Field::Friction));
-        assert_eq!(p.with_restitution(1.01).unwrap_err().field(), Some(Field::Restitution));
-        assert_eq!(p.with_mu_s(f32::NAN).unwrap_err(), Error::NotFinite { field: Field::TableFriction });
-        assert_eq!(p.with_ball(0.0, 0.17).unwrap_err().field(), Some(Field::Radius));
-        assert_eq!(p.with_ball(0.03, -1.0).unwrap_err().field(), Some(Field::Mass));
+        assert_eq!(
+            p.with_restitution(1.01).unwrap_err().field(),
+            Some(Field::Restitution)
+        );
+        assert_eq!(
+            p.with_mu_s(f32::NAN).unwrap_err(),
+            Error::NotFinite {
+                field: Field::TableFriction
+            }
+        );
+        assert_eq!(
+            p.with_ball(0.0, 0.17).unwrap_err().field(),
+            Some(Field::Radius)
+        );
+        assert_eq!(
+            p.with_ball(0.03, -1.0).unwrap_err().field(),
+            Some(Field::Mass)
+        );
     }
 }

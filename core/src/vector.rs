@@ -57,7 +57,9 @@ impl Vec3 {
 
     /// `true` when every component is finite.
     pub fn is_finite(self) -> bool {
-        crate::math::is_finite(self.x) && crate::math::is_finite(self.y) && crate::math::is_finite(self.z)
+        crate::math::is_finite(self.x)
+            && crate::math::is_finite(self.y)
+            && crate::math::is_finite(self.z)
     }
 }
 

@@ -13,9 +13,19 @@ fn main() {
             let b = solve(&p, v, w, &ReferenceConfig { steps: 2 * steps }).unwrap();
             let u = s.speed();
             let r = s.radius as f64;
-            let e = [a.cue_ball.velocity.distance(b.cue_ball.velocity), a.object_ball.velocity.distance(b.object_ball.velocity),
-                a.cue_ball.spin.distance(b.cue_ball.spin) * r, a.object_ball.spin.distance(b.object_ball.spin) * r].iter().cloned().fold(0.0, f64::max) / u;
-            if e > worst.0 { worst = (e, i); }
+            let e = [
+                a.cue_ball.velocity.distance(b.cue_ball.velocity),
+                a.object_ball.velocity.distance(b.object_ball.velocity),
+                a.cue_ball.spin.distance(b.cue_ball.spin) * r,
+                a.object_ball.spin.distance(b.object_ball.spin) * r,
+            ]
+            .iter()
+            .cloned()
+            .fold(0.0, f64::max)
+                / u;
+            if e > worst.0 {
+                worst = (e, i);
+            }
             if steps == 1000 && i == 0 {}
         }
         let s = &scenes[worst.1];

@@ -17,7 +17,10 @@ pub fn reference(scene: &Scene) -> Result<ReferenceOutcome, ReferenceError> {
 }
 
 /// Reference solve of a grid scene.
-pub fn reference_with(scene: &Scene, config: &ReferenceConfig) -> Result<ReferenceOutcome, ReferenceError> {
+pub fn reference_with(
+    scene: &Scene,
+    config: &ReferenceConfig,
+) -> Result<ReferenceOutcome, ReferenceError> {
     solve(
         &ReferenceParams::from_core(&scene.params()),
         DVec3::new(scene.velocity[0] as f64, scene.velocity[1] as f64, 0.0),
@@ -38,7 +41,11 @@ pub struct SceneError {
 }
 
 /// Errors of `model` against `reference` for `scene`.
-pub fn scene_error(scene: &Scene, model: &cuesight::Outcome, reference: &ReferenceOutcome) -> SceneError {
+pub fn scene_error(
+    scene: &Scene,
+    model: &cuesight::Outcome,
+    reference: &ReferenceOutcome,
+) -> SceneError {
     let speed = scene.speed();
     let radius = scene.radius as f64;
     let dv = widen(model.cue_ball.velocity)
@@ -74,10 +81,13 @@ impl Summary {
         let mut sum = [0.0f64; 3];
         for (i, e) in errors {
             s.count += 1;
-            for (k, (value, max)) in
-                [(e.velocity, &mut s.max.velocity), (e.spin, &mut s.max.spin), (e.throw_deg, &mut s.max.throw_deg)]
-                    .into_iter()
-                    .enumerate()
+            for (k, (value, max)) in [
+                (e.velocity, &mut s.max.velocity),
+                (e.spin, &mut s.max.spin),
+                (e.throw_deg, &mut s.max.throw_deg),
+            ]
+            .into_iter()
+            .enumerate()
             {
                 sum[k] += value * value;
                 if value > *max {
@@ -87,7 +97,11 @@ impl Summary {
             }
         }
         let n = s.count.max(1) as f64;
-        s.rms = SceneError { velocity: (sum[0] / n).sqrt(), spin: (sum[1] / n).sqrt(), throw_deg: (sum[2] / n).sqrt() };
+        s.rms = SceneError {
+            velocity: (sum[0] / n).sqrt(),
+            spin: (sum[1] / n).sqrt(),
+            throw_deg: (sum[2] / n).sqrt(),
+        };
         s
     }
 }

@@ -52,7 +52,8 @@ impl Scene {
 
     /// Core parameters.
     pub fn params(&self) -> cuesight::Params {
-        cuesight::Params::new(self.mu, self.restitution, self.mu_s, self.radius, self.mass).expect("grid params are valid")
+        cuesight::Params::new(self.mu, self.restitution, self.mu_s, self.radius, self.mass)
+            .expect("grid params are valid")
     }
 
     /// Core impact.
@@ -64,7 +65,13 @@ impl Scene {
 /// The seeded grid: `count` scenes, cycling through the spin kinds.
 pub fn scenes(seed: u64, count: usize) -> Vec<Scene> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let kinds = [SpinKind::Stun, SpinKind::Follow, SpinKind::Draw, SpinKind::Side, SpinKind::NearGearing];
+    let kinds = [
+        SpinKind::Stun,
+        SpinKind::Follow,
+        SpinKind::Draw,
+        SpinKind::Side,
+        SpinKind::NearGearing,
+    ];
     let radius = 0.028575f64;
     (0..count)
         .map(|i| {

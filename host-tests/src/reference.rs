@@ -191,7 +191,8 @@ impl Solver {
 
     /// Velocity of the object-ball contact point relative to the cue-ball one.
     fn slip(&self, s: &State) -> DVec3 {
-        (s.object.velocity + s.object.spin.cross(self.r_object())) - (s.cue.velocity + s.cue.spin.cross(self.r_cue()))
+        (s.object.velocity + s.object.spin.cross(self.r_object()))
+            - (s.cue.velocity + s.cue.spin.cross(self.r_cue()))
     }
 
     fn tangential_slip(&self, s: &State) -> DVec2 {
@@ -268,7 +269,11 @@ impl Solver {
         }
         let half = self.step(s, 0.5 * dp, -t0.normalize() * 0.5 * budget);
         let t_half = self.tangential_slip(&half);
-        let direction = if t_half.length() > 0.0 && t_half.dot(t0) > 0.0 { -t_half.normalize() } else { -t0.normalize() };
+        let direction = if t_half.length() > 0.0 && t_half.dot(t0) > 0.0 {
+            -t_half.normalize()
+        } else {
+            -t0.normalize()
+        };
         self.step(s, dp, direction * budget)
     }
 
@@ -345,7 +350,10 @@ pub fn solve(
         speed_scale: velocity.length().max(params.radius * spin.length()),
     };
     let mut state = State {
-        cue: BallState { velocity: DVec3::new(velocity.x, velocity.y, 0.0), spin },
+        cue: BallState {
+            velocity: DVec3::new(velocity.x, velocity.y, 0.0),
+            spin,
+        },
         object: BallState::default(),
         friction: DVec3::ZERO,
         table_friction: DVec3::ZERO,
@@ -447,7 +455,10 @@ pub fn collide(params: &cuesight::Params, impact: &cuesight::Impact) -> cuesight
     )
     .expect("validated core inputs are valid reference inputs");
     cuesight::Outcome {
-        cue_ball: cuesight::BallState { velocity: to_f32(out.cue_ball.velocity), spin: to_f32(out.cue_ball.spin) },
+        cue_ball: cuesight::BallState {
+            velocity: to_f32(out.cue_ball.velocity),
+            spin: to_f32(out.cue_ball.spin),
+        },
         object_ball: cuesight::BallState {
             velocity: to_f32(out.object_ball.velocity),
             spin: to_f32(out.object_ball.spin),

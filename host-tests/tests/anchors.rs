@@ -20,7 +20,10 @@ fn reference(params: &Params, impact: &Impact) -> ReferenceOutcome {
 }
 
 fn close(actual: f64, expected: f64, tolerance: f64, what: &str) {
-    assert!((actual - expected).abs() <= tolerance, "{what}: {actual} vs expected {expected} (± {tolerance})");
+    assert!(
+        (actual - expected).abs() <= tolerance,
+        "{what}: {actual} vs expected {expected} (± {tolerance})"
+    );
 }
 
 /// Erratum E1 example: head-on natural roll, U = 2 m/s, R = 28.6 mm, M = 0.17 kg,
@@ -35,7 +38,10 @@ fn erratum_e1_object_ball_spin() {
     for model in [Model::Kim, Model::KimGrip] {
         let out = collide(&params, &impact, model).unwrap();
         close(out.object_ball.spin.y as f64, -6.0, 0.05, model.name());
-        assert!((out.object_ball.spin.y as f64 + 11.1).abs() > 4.0, "{model:?} reproduces the uncorrected sign");
+        assert!(
+            (out.object_ball.spin.y as f64 + 11.1).abs() > 4.0,
+            "{model:?} reproduces the uncorrected sign"
+        );
     }
 }
 
@@ -52,7 +58,12 @@ fn tp_a5_stun_cut() {
         let out = collide(&params, &impact, model).unwrap();
         close(out.cue_deflection_deg() as f64, 3.307, 0.0015, "deviation");
         close(out.throw_angle_deg() as f64, 3.434, 0.0015, "throw");
-        close(out.separation_angle_deg() as f64, 83.259, 0.002, "separation");
+        close(
+            out.separation_angle_deg() as f64,
+            83.259,
+            0.002,
+            "separation",
+        );
     }
 }
 
@@ -60,15 +71,29 @@ fn tp_a5_stun_cut() {
 /// 0.573° (e = 0.98); 30° → 3.96°, 0.99°; 10°, e = 0.92 → ≈ 12.8°.
 #[test]
 fn seed_frictionless_deviation_table() {
-    for (cut, e, expected, tolerance) in
-        [(45.0, 0.92, 2.29, 0.005), (45.0, 0.98, 0.573, 0.001), (30.0, 0.92, 3.96, 0.005), (30.0, 0.98, 0.99, 0.005), (10.0, 0.92, 12.8, 0.05)]
-    {
+    for (cut, e, expected, tolerance) in [
+        (45.0, 0.92, 2.29, 0.005),
+        (45.0, 0.98, 0.573, 0.001),
+        (30.0, 0.92, 3.96, 0.005),
+        (30.0, 0.98, 0.99, 0.005),
+        (10.0, 0.92, 12.8, 0.05),
+    ] {
         let params = Params::new(0.0, e, 0.3, 0.028575, 0.17).unwrap();
         let impact = Impact::from_cut_degrees(2.0, cut, [0.0, 30.0, 0.0]).unwrap();
-        close(reference(&params, &impact).cue_deflection_deg(), expected, tolerance, "reference");
+        close(
+            reference(&params, &impact).cue_deflection_deg(),
+            expected,
+            tolerance,
+            "reference",
+        );
         for model in [Model::Kim, Model::KimGrip] {
             let out = collide(&params, &impact, model).unwrap();
-            close(out.cue_deflection_deg() as f64, expected, tolerance, model.name());
+            close(
+                out.cue_deflection_deg() as f64,
+                expected,
+                tolerance,
+                model.name(),
+            );
         }
     }
 }
@@ -87,10 +112,20 @@ fn hop_height() {
     for e in [0.9f32, 0.95] {
         let params = params.with_restitution(e).unwrap();
         let r = reference(&params, &impact);
-        close(r.cue_ball.velocity.z, 0.05 * (1.0 + e as f64) * 10.0 / 2.0, 1e-7, "TP B.5 hop speed");
+        close(
+            r.cue_ball.velocity.z,
+            0.05 * (1.0 + e as f64) * 10.0 / 2.0,
+            1e-7,
+            "TP B.5 hop speed",
+        );
     }
     let with_table = reference(&params.with_mu_s(0.3).unwrap(), &impact);
-    close(with_table.cue_ball.velocity.z, 0.5 * (1.0 + 0.05 * 0.3 / 2.0), 2e-4, "hop speed with μ_s");
+    close(
+        with_table.cue_ball.velocity.z,
+        0.5 * (1.0 + 0.05 * 0.3 / 2.0),
+        2e-4,
+        "hop speed with μ_s",
+    );
 }
 
 /// Seed §5: head-on natural roll, e = 1: U_f ≈ μU(−μ_s/2, 0, 1), V_f ≈ U(1 − μμ_s/2, 0, 0)
@@ -102,8 +137,23 @@ fn head_on_roll_first_order() {
     let impact = Impact::rolling([u as f32, 0.0], 0.028575).unwrap();
     let r = reference(&params, &impact);
     let next_order = mu * mu * mu_s * u;
-    close(r.cue_ball.velocity.x, -mu * mu_s / 2.0 * u, next_order, "U_x");
+    close(
+        r.cue_ball.velocity.x,
+        -mu * mu_s / 2.0 * u,
+        next_order,
+        "U_x",
+    );
     close(r.cue_ball.velocity.z, mu * u, next_order, "U_z");
-    close(r.object_ball.velocity.x, (1.0 - mu * mu_s / 2.0) * u, next_order, "V_x");
-    close(r.object_ball.velocity.y.abs() + r.object_ball.velocity.z.abs(), 0.0, 1e-12, "V_y, V_z");
+    close(
+        r.object_ball.velocity.x,
+        (1.0 - mu * mu_s / 2.0) * u,
+        next_order,
+        "V_x",
+    );
+    close(
+        r.object_ball.velocity.y.abs() + r.object_ball.velocity.z.abs(),
+        0.0,
+        1e-12,
+        "V_y, V_z",
+    );
 }

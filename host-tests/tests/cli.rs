@@ -248,11 +248,14 @@ fn help_and_version_still_work() {
     assert!(help.contains("--spin") && help.contains("--model"));
 }
 
-/// The reference solver is still being written; this only checks that the CLI wires
-/// `--model reference` to it. Run with `cargo test -- --ignored` once it lands.
+/// `--model reference` runs the f64 solver; on a stun 30° cut (pure sliding along y,
+/// where the closed form is exact) it agrees with kim-grip to f32 precision.
 #[test]
-#[ignore = "reference solver (host-tests/src/reference.rs) is work in progress"]
-fn reference_model_runs() {
-    let v = json(&["--speed", "2", "--cut", "30", "--model", "reference"]);
-    assert_eq!(v["model"], "reference");
+fn reference_model_runs_and_agrees_on_a_stun_cut() {
+    let reference = json(&["--speed", "2", "--cut", "30", "--model", "reference"]);
+    let kim_grip = json(&["--speed", "2", "--cut", "30"]);
+    assert_eq!(reference["model"], "reference");
+    assert_eq!(reference["regime"], "sliding");
+    let throw = |v: &serde_json::Value| v["throw_deg"].as_f64().unwrap();
+    assert!((throw(&reference) - throw(&kim_grip)).abs() < 1e-4);
 }

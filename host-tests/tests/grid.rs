@@ -22,7 +22,10 @@ struct Solved {
 fn solved_grid() -> Vec<Solved> {
     scenes(SEED, SCENES)
         .into_iter()
-        .map(|scene| Solved { reference: reference(&scene).expect("grid scenes are valid reference input"), scene })
+        .map(|scene| Solved {
+            reference: reference(&scene).expect("grid scenes are valid reference input"),
+            scene,
+        })
         .collect()
 }
 
@@ -31,8 +34,16 @@ fn grid_accuracy_and_invariants() {
     let grid = solved_grid();
     assert!(grid.len() >= 10_000);
     let mut report = String::new();
-    let gripping = grid.iter().filter(|s| s.reference.regime == ReferenceRegime::Gripping).count();
-    writeln!(report, "grid seed {SEED}: {} scenes, {gripping} grip in the reference", grid.len()).unwrap();
+    let gripping = grid
+        .iter()
+        .filter(|s| s.reference.regime == ReferenceRegime::Gripping)
+        .count();
+    writeln!(
+        report,
+        "grid seed {SEED}: {} scenes, {gripping} grip in the reference",
+        grid.len()
+    )
+    .unwrap();
 
     // Every model: no error, finite outputs (the core turns non-finite into Err).
     for model in Model::ALL {
@@ -43,10 +54,15 @@ fn grid_accuracy_and_invariants() {
     }
 
     let errors = |model: Model, filter: &dyn Fn(&Solved) -> bool| {
-        Summary::of(grid.iter().enumerate().filter(|(_, s)| filter(s)).map(|(i, s)| {
-            let out = collide(&s.scene.params(), &s.scene.impact(), model).unwrap();
-            (i, scene_error(&s.scene, &out, &s.reference))
-        }))
+        Summary::of(
+            grid.iter()
+                .enumerate()
+                .filter(|(_, s)| filter(s))
+                .map(|(i, s)| {
+                    let out = collide(&s.scene.params(), &s.scene.impact(), model).unwrap();
+                    (i, scene_error(&s.scene, &out, &s.reference))
+                }),
+        )
     };
     let all = |_: &Solved| true;
     let sliding = |s: &Solved| s.reference.regime == ReferenceRegime::Sliding;
@@ -54,10 +70,30 @@ fn grid_accuracy_and_invariants() {
 
     let kim_grip = errors(Model::KimGrip, &all);
     writeln!(report, "KimGrip, all:            {kim_grip}").unwrap();
-    writeln!(report, "KimGrip, sliding scenes: {}", errors(Model::KimGrip, &sliding)).unwrap();
-    writeln!(report, "KimGrip, gripping scenes: {}", errors(Model::KimGrip, &grips)).unwrap();
-    writeln!(report, "Kim, sliding scenes:     {}", errors(Model::Kim, &sliding)).unwrap();
-    writeln!(report, "Kim, gripping scenes:    {}", errors(Model::Kim, &grips)).unwrap();
+    writeln!(
+        report,
+        "KimGrip, sliding scenes: {}",
+        errors(Model::KimGrip, &sliding)
+    )
+    .unwrap();
+    writeln!(
+        report,
+        "KimGrip, gripping scenes: {}",
+        errors(Model::KimGrip, &grips)
+    )
+    .unwrap();
+    writeln!(
+        report,
+        "Kim, sliding scenes:     {}",
+        errors(Model::Kim, &sliding)
+    )
+    .unwrap();
+    writeln!(
+        report,
+        "Kim, gripping scenes:    {}",
+        errors(Model::Kim, &grips)
+    )
+    .unwrap();
 
     let regime_mismatch = grid
         .iter()
@@ -74,11 +110,29 @@ fn grid_accuracy_and_invariants() {
     std::fs::write(&path, &report).expect("write grid report");
 
     let worst = |k: usize| &grid[kim_grip.argmax[k]].scene;
-    assert!(kim_grip.max.velocity <= 0.005, "max |dv|/U {} at {:?}", kim_grip.max.velocity, worst(0));
-    assert!(kim_grip.max.spin <= 0.01, "max R|dw|/U {} at {:?}", kim_grip.max.spin, worst(1));
-    assert!(kim_grip.max.throw_deg <= 0.25, "max throw error {} at {:?}", kim_grip.max.throw_deg, worst(2));
+    assert!(
+        kim_grip.max.velocity <= 0.005,
+        "max |dv|/U {} at {:?}",
+        kim_grip.max.velocity,
+        worst(0)
+    );
+    assert!(
+        kim_grip.max.spin <= 0.01,
+        "max R|dw|/U {} at {:?}",
+        kim_grip.max.spin,
+        worst(1)
+    );
+    assert!(
+        kim_grip.max.throw_deg <= 0.25,
+        "max throw error {} at {:?}",
+        kim_grip.max.throw_deg,
+        worst(2)
+    );
     // Regime flips may only happen where the two models sit on the boundary.
-    assert!(regime_mismatch * 50 < grid.len(), "{regime_mismatch} regime mismatches");
+    assert!(
+        regime_mismatch * 50 < grid.len(),
+        "{regime_mismatch} regime mismatches"
+    );
 }
 
 #[test]
@@ -87,14 +141,22 @@ fn reference_creates_no_energy_and_balances_y_momentum() {
         let (m, r) = (s.scene.mass as f64, s.scene.radius as f64);
         let before = cuesight_host::reference::kinetic_energy(
             &cuesight_host::reference::BallState {
-                velocity: glam::DVec3::new(s.scene.velocity[0] as f64, s.scene.velocity[1] as f64, 0.0),
+                velocity: glam::DVec3::new(
+                    s.scene.velocity[0] as f64,
+                    s.scene.velocity[1] as f64,
+                    0.0,
+                ),
                 spin: cuesight_host::compare::widen(cuesight::Vec3::from_array(s.scene.spin)),
             },
             m,
             r,
         );
         let after = s.reference.kinetic_energy(m, r);
-        assert!(after <= before * (1.0 + 1e-12), "energy created: {before} -> {after} in {:?}", s.scene);
+        assert!(
+            after <= before * (1.0 + 1e-12),
+            "energy created: {before} -> {after} in {:?}",
+            s.scene
+        );
         // y-momentum changes only through the object ball's table friction.
         let momentum_y = m * (s.reference.cue_ball.velocity.y + s.reference.object_ball.velocity.y);
         let change = momentum_y - m * s.scene.velocity[1] as f64;
@@ -105,6 +167,9 @@ fn reference_creates_no_energy_and_balances_y_momentum() {
             s.scene
         );
         // The table impulse can only be friction: bounded by μ_s times the pressing.
-        assert!(table_y.abs() <= s.scene.mu_s as f64 * s.reference.friction_impulse.z.abs() * (1.0 + 1e-9));
+        assert!(
+            table_y.abs()
+                <= s.scene.mu_s as f64 * s.reference.friction_impulse.z.abs() * (1.0 + 1e-9)
+        );
     }
 }

@@ -7,7 +7,14 @@ use cuesight_host::reference::{solve, ReferenceConfig, ReferenceParams, Referenc
 use glam::DVec3;
 
 fn params(mu: f64, restitution: f64, mu_s: f64) -> ReferenceParams {
-    ReferenceParams { mu, restitution, mu_s, cue_table_friction: 0.0, radius: 0.028575, mass: 0.17 }
+    ReferenceParams {
+        mu,
+        restitution,
+        mu_s,
+        cue_table_friction: 0.0,
+        radius: 0.028575,
+        mass: 0.17,
+    }
 }
 
 /// Halving the step changes no output by more than 1e-6 relative (velocities to U,
@@ -15,7 +22,9 @@ fn params(mu: f64, restitution: f64, mu_s: f64) -> ReferenceParams {
 #[test]
 fn step_size_convergence() {
     let coarse = ReferenceConfig::default();
-    let fine = ReferenceConfig { steps: 2 * coarse.steps };
+    let fine = ReferenceConfig {
+        steps: 2 * coarse.steps,
+    };
     let mut worst = 0.0f64;
     for scene in scenes(99, 300) {
         let a = reference_with(&scene, &coarse).unwrap();
@@ -47,7 +56,11 @@ fn frictionless_is_the_exact_inelastic_result() {
         assert_eq!(out.regime, ReferenceRegime::Frictionless);
         let expect_cue = DVec3::new(v.x * (1.0 - e) / 2.0, v.y, 0.0);
         let expect_object = DVec3::new(v.x * (1.0 + e) / 2.0, 0.0, 0.0);
-        assert!(out.cue_ball.velocity.distance(expect_cue) < 1e-12, "{:?}", out.cue_ball.velocity);
+        assert!(
+            out.cue_ball.velocity.distance(expect_cue) < 1e-12,
+            "{:?}",
+            out.cue_ball.velocity
+        );
         assert!(out.object_ball.velocity.distance(expect_object) < 1e-12);
         assert!(out.cue_ball.spin.distance(w) < 1e-12);
         assert!(out.object_ball.spin.length() < 1e-12);
@@ -60,11 +73,20 @@ fn frictionless_is_the_exact_inelastic_result() {
 #[test]
 fn peskin_limit_head_on_roll() {
     let (mu, u, r) = (0.06, 2.5, 0.028575);
-    let out = solve(&params(mu, 1.0, 0.0), DVec3::new(u, 0.0, 0.0), DVec3::new(0.0, u / r, 0.0), &ReferenceConfig::default())
-        .unwrap();
+    let out = solve(
+        &params(mu, 1.0, 0.0),
+        DVec3::new(u, 0.0, 0.0),
+        DVec3::new(0.0, u / r, 0.0),
+        &ReferenceConfig::default(),
+    )
+    .unwrap();
     assert_eq!(out.regime, ReferenceRegime::Sliding);
     let tol = 1e-9 * u;
-    assert!(out.cue_ball.velocity.distance(DVec3::new(0.0, 0.0, mu * u)) < tol, "{:?}", out.cue_ball.velocity);
+    assert!(
+        out.cue_ball.velocity.distance(DVec3::new(0.0, 0.0, mu * u)) < tol,
+        "{:?}",
+        out.cue_ball.velocity
+    );
     assert!(out.object_ball.velocity.distance(DVec3::new(u, 0.0, 0.0)) < tol);
     assert!((out.cue_ball.spin.y - u / r * (1.0 - mu / 0.4)).abs() * r < tol);
     assert!((out.object_ball.spin.y + mu / 0.4 * u / r).abs() * r < tol);
@@ -77,13 +99,26 @@ fn peskin_limit_head_on_roll() {
 fn stick_cap_is_one_seventh_of_the_slip() {
     let (u, cut) = (2.0f64, 3.0f64.to_radians());
     let v = DVec3::new(u * cut.cos(), u * cut.sin(), 0.0);
-    let out = solve(&params(0.08, 0.95, 0.3), v, DVec3::ZERO, &ReferenceConfig::default()).unwrap();
+    let out = solve(
+        &params(0.08, 0.95, 0.3),
+        v,
+        DVec3::ZERO,
+        &ReferenceConfig::default(),
+    )
+    .unwrap();
     assert_eq!(out.regime, ReferenceRegime::Gripping);
     let slip_y = -v.y;
-    assert!((out.friction_impulse.y - (-0.17 * slip_y / 7.0)).abs() < 1e-12, "{:?}", out.friction_impulse);
+    assert!(
+        (out.friction_impulse.y - (-0.17 * slip_y / 7.0)).abs() < 1e-12,
+        "{:?}",
+        out.friction_impulse
+    );
     // And the final tangential slip is zero: (V_y − R Ω_z) − (U_y + R ω_z) = 0.
     let r = 0.028575;
-    let slip_after = out.object_ball.velocity.y - r * out.object_ball.spin.z - out.cue_ball.velocity.y - r * out.cue_ball.spin.z;
+    let slip_after = out.object_ball.velocity.y
+        - r * out.object_ball.spin.z
+        - out.cue_ball.velocity.y
+        - r * out.cue_ball.spin.z;
     assert!(slip_after.abs() < 1e-10, "slip after {slip_after}");
 }
 
@@ -95,8 +130,12 @@ fn restitution_extremes() {
     let w = DVec3::new(0.0, 30.0, 10.0);
     let out = solve(&params(0.05, 0.0, 0.3), v, w, &ReferenceConfig::default()).unwrap();
     let relative_normal = out.object_ball.velocity.x - out.cue_ball.velocity.x;
-    assert!(relative_normal.abs() < 1e-9, "e=0 leaves normal relative velocity {relative_normal}");
+    assert!(
+        relative_normal.abs() < 1e-9,
+        "e=0 leaves normal relative velocity {relative_normal}"
+    );
     let out = solve(&params(0.0, 1.0, 0.3), v, w, &ReferenceConfig::default()).unwrap();
-    let before = 0.5 * 0.17 * v.length_squared() + 0.5 * 0.4 * 0.17 * 0.028575f64.powi(2) * w.length_squared();
+    let before = 0.5 * 0.17 * v.length_squared()
+        + 0.5 * 0.4 * 0.17 * 0.028575f64.powi(2) * w.length_squared();
     assert!((out.kinetic_energy(0.17, 0.028575) - before).abs() < 1e-12 * before);
 }
