@@ -23,7 +23,7 @@ pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
     let approach = impact.velocity().x;
     let frictionless_normal = 0.5 * (1.0 + params.restitution()) * approach;
     let (slip_y, slip_z) = impact.initial_slip(params.radius());
-    let scale = math::abs(slip_y).max(math::abs(slip_z));
+    let scale = math::max(math::abs(slip_y), math::abs(slip_z));
     if mu == 0.0 || scale == 0.0 {
         // No friction, or no slip and so no friction direction (exact gearing).
         let regime = if mu == 0.0 {

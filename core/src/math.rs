@@ -22,19 +22,31 @@ use micromath::F32Ext as _;
 /// Square root of `x` (`x ≥ 0`; returns NaN for negative input like IEEE `sqrt`).
 #[inline(always)]
 pub fn sqrt(x: f32) -> f32 {
-    #[cfg(all(target_arch = "arm", target_feature = "vfp2"))]
+    #[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
     {
-        let root: f32;
-        // SAFETY: `vsqrt.f32` is a pure register-to-register FPU instruction with no
-        // memory access or side effect; the target has a single-precision FPU.
+        let bits: u32;
+        // Rust 1.95 refuses the `sreg` operand class on thumbv7em-none-eabihf (it asks
+        // for `vfp2`, which implies double precision; rust-lang/rust#159976, fixed in
+        // later releases), so the operand travels through a core register and s0 is
+        // saved and restored around the instruction.
+        // SAFETY: `vsqrt.f32` is a pure FPU instruction; s0 is restored and the stack
+        // is balanced, so no state visible to Rust changes.
         #[allow(unsafe_code)]
         unsafe {
-            core::arch::asm!("vsqrt.f32 {0}, {1}", lateout(sreg) root, in(sreg) x,
-                options(pure, nomem, nostack, preserves_flags));
+            core::arch::asm!(
+                "vpush {{s0}}",
+                "vmov s0, {input}",
+                "vsqrt.f32 s0, s0",
+                "vmov {output}, s0",
+                "vpop {{s0}}",
+                input = in(reg) x.to_bits(),
+                output = lateout(reg) bits,
+                options(pure, nomem, preserves_flags),
+            );
         }
-        root
+        f32::from_bits(bits)
     }
-    #[cfg(not(all(target_arch = "arm", target_feature = "vfp2")))]
+    #[cfg(not(all(target_arch = "arm", target_abi = "eabihf")))]
     {
         #[cfg(feature = "libm")]
         {
@@ -51,6 +63,17 @@ pub fn sqrt(x: f32) -> f32 {
 #[inline(always)]
 pub fn abs(x: f32) -> f32 {
     f32::from_bits(x.to_bits() & 0x7fff_ffff)
+}
+
+/// Larger of `a` and `b` (for non-NaN inputs). A comparison, because `f32::max` lowers
+/// to a `fmaxf` library call on ARMv7-M, which has no `vmaxnm`.
+#[inline(always)]
+pub fn max(a: f32, b: f32) -> f32 {
+    if a > b {
+        a
+    } else {
+        b
+    }
 }
 
 /// Sine of `x` (radians). Input construction only.
