@@ -1,0 +1,97 @@
+//! Running external commands: echo them, run them, turn a failure into a [`Failure`].
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitStatus};
+
+/// Why a task failed, and the exit code `cargo xtask` ends with.
+#[derive(Debug)]
+pub struct Failure {
+    pub message: String,
+    pub code: u8,
+}
+
+impl Failure {
+    /// A failure with exit code 1.
+    pub fn new(message: impl Into<String>) -> Self {
+        Self {
+            message: message.into(),
+            code: 1,
+        }
+    }
+}
+
+pub type Result<T = ()> = std::result::Result<T, Failure>;
+
+/// The repository root (the parent of `xtask/`).
+pub fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask/ has a parent")
+        .to_path_buf()
+}
+
+/// The firmware workspace. Cargo reads `firmware/.cargo/config.toml` (target, runner,
+/// linker flags) only when run from there, so every firmware command uses it as cwd.
+pub fn firmware_dir() -> PathBuf {
+    root().join("firmware")
+}
+
+/// `cargo`, the same one that runs xtask when possible.
+pub fn cargo() -> Command {
+    Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()))
+}
+
+/// Human-readable form of a command, for the log.
+pub fn display(cmd: &Command) -> String {
+    let mut line = cmd.get_program().to_string_lossy().into_owned();
+    if line.ends_with("/cargo") {
+        line = "cargo".into();
+    }
+    for arg in cmd.get_args() {
+        line.push(' ');
+        line.push_str(&arg.to_string_lossy());
+    }
+    match cmd.get_current_dir() {
+        Some(dir) if dir != root() => {
+            let shown = dir.strip_prefix(root()).unwrap_or(dir);
+            format!("(cd {} && {line})", shown.display())
+        }
+        _ => line,
+    }
+}
+
+/// Echoes and runs `cmd` (cwd defaults to the repository root), inheriting stdio,
+/// and fails unless it exits 0.
+pub fn run(cmd: &mut Command) -> Result {
+    if cmd.get_current_dir().is_none() {
+        cmd.current_dir(root());
+    }
+    let shown = display(cmd);
+    println!("$ {shown}");
+    let status = cmd
+        .status()
+        .map_err(|e| Failure::new(format!("cannot start `{shown}`: {e}")))?;
+    check(&shown, status)
+}
+
+/// Turns a non-zero exit into a [`Failure`] carrying the same code.
+pub fn check(shown: &str, status: ExitStatus) -> Result {
+    if status.success() {
+        return Ok(());
+    }
+    let code = status
+        .code()
+        .map_or(1, |c| u8::try_from(c).ok().filter(|&c| c != 0).unwrap_or(1));
+    Err(Failure {
+        message: format!("`{shown}` failed ({status})"),
+        code,
+    })
+}
+
+/// Runs `cmd` quietly and returns its stdout if it exits 0 (used to probe for tools).
+pub fn probe(cmd: &mut Command) -> Option<String> {
+    let out = cmd.stdin(std::process::Stdio::null()).output().ok()?;
+    out.status
+        .success()
+        .then(|| String::from_utf8_lossy(&out.stdout).into_owned())
+}

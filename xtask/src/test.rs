@@ -1,0 +1,142 @@
+//! `cargo xtask test`: every check, in order, each under a header; stops at the
+//! first failure unless asked to keep going, and ends with a one-line summary.
+
+use std::time::{Duration, Instant};
+
+use crate::cmd::{self, Failure, Result};
+use crate::{qemu, tools};
+
+/// One check: a title and what it runs.
+struct Step {
+    title: &'static str,
+    action: fn() -> Result,
+}
+
+fn cargo_at_root(args: &[&str]) -> Result {
+    cmd::run(cmd::cargo().args(args))
+}
+
+fn cargo_in_firmware(args: &[&str]) -> Result {
+    cmd::run(cmd::cargo().args(args).current_dir(cmd::firmware_dir()))
+}
+
+const STEPS: &[Step] = &[
+    Step {
+        title: "host: rustfmt",
+        action: || cargo_at_root(&["fmt", "--all", "--", "--check"]),
+    },
+    Step {
+        title: "host: clippy",
+        action: || {
+            cargo_at_root(&[
+                "clippy",
+                "--workspace",
+                "--all-targets",
+                "--",
+                "-D",
+                "warnings",
+            ])
+        },
+    },
+    Step {
+        title: "host: tests",
+        action: || cargo_at_root(&["test", "--workspace"]),
+    },
+    Step {
+        title: "core: build for thumbv7em-none-eabihf",
+        action: || {
+            cargo_at_root(&[
+                "build",
+                "-p",
+                "cuesight",
+                "--target",
+                tools::TARGET,
+                "--release",
+            ])
+        },
+    },
+    Step {
+        title: "firmware: rustfmt",
+        action: || cargo_in_firmware(&["fmt", "--all", "--", "--check"]),
+    },
+    Step {
+        title: "firmware: clippy",
+        action: || cargo_in_firmware(&["clippy", "--release", "--", "-D", "warnings"]),
+    },
+    Step {
+        title: "firmware: release build",
+        action: qemu::build_release,
+    },
+    Step {
+        title: "firmware: run in QEMU",
+        action: run_in_qemu,
+    },
+];
+
+fn run_in_qemu() -> Result {
+    tools::ensure_qemu()?;
+    qemu::run(
+        &qemu::elf_path(),
+        Duration::from_secs(qemu::DEFAULT_TIMEOUT_SECS),
+    )
+}
+
+/// Runs every step (see [`STEPS`]).
+pub fn run_all(keep_going: bool) -> Result {
+    let started = Instant::now();
+    let total = STEPS.len();
+    tools::ensure_toolchain()?;
+    let mut failed: Vec<&str> = Vec::new();
+    let mut first_failure: Option<Failure> = None;
+    let mut ran = 0;
+    for (i, step) in STEPS.iter().enumerate() {
+        println!("\n==> [{}/{total}] {}", i + 1, step.title);
+        let step_start = Instant::now();
+        let result = (step.action)();
+        ran += 1;
+        match result {
+            Ok(()) => println!(
+                "<== [{}/{total}] {}: ok ({:.1} s)",
+                i + 1,
+                step.title,
+                secs(step_start)
+            ),
+            Err(failure) => {
+                println!(
+                    "<== [{}/{total}] {}: FAILED: {}",
+                    i + 1,
+                    step.title,
+                    failure.message
+                );
+                failed.push(step.title);
+                first_failure.get_or_insert(failure);
+                if !keep_going {
+                    break;
+                }
+            }
+        }
+    }
+    let passed = ran - failed.len();
+    let skipped = total - ran;
+    println!();
+    if !failed.is_empty() {
+        println!("xtask test: failed step(s): {}", failed.join("; "));
+    }
+    println!("xtask test: {total} steps in {:.0} s", secs(started));
+    // Alone on its line, in the 'N passed, N failed' form CI summaries look for.
+    println!(
+        "summary: {passed} passed, {} failed, {skipped} skipped",
+        failed.len()
+    );
+    match first_failure {
+        None => Ok(()),
+        Some(failure) => Err(Failure {
+            message: "xtask test failed".into(),
+            code: failure.code,
+        }),
+    }
+}
+
+fn secs(since: Instant) -> f64 {
+    since.elapsed().as_secs_f64()
+}

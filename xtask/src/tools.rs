@@ -1,0 +1,222 @@
+//! Installs what the checks need, only when it is missing (idempotent and silent when
+//! everything is present): the Cortex-M target and clippy/rustfmt through rustup,
+//! QEMU through apt, defmt-print through `cargo install`.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::Command;
+
+use crate::cmd::{self, probe, Failure, Result};
+
+/// The firmware's target (Cortex-M4F with FPU).
+pub const TARGET: &str = "thumbv7em-none-eabihf";
+
+/// Everything the host and firmware checks need before QEMU: the target, clippy, rustfmt.
+pub fn ensure_toolchain() -> Result {
+    if probe(Command::new("rustup").arg("--version")).is_none() {
+        println!("xtask: rustup not found; assuming the toolchain already has {TARGET}, clippy and rustfmt");
+        return Ok(());
+    }
+    let targets =
+        probe(Command::new("rustup").args(["target", "list", "--installed"])).unwrap_or_default();
+    if !targets.lines().any(|t| t.trim() == TARGET) {
+        println!("xtask: installing the Rust target {TARGET}");
+        cmd::run(Command::new("rustup").args(["target", "add", TARGET]))?;
+    }
+    let components = probe(Command::new("rustup").args(["component", "list", "--installed"]))
+        .unwrap_or_default();
+    let missing: Vec<&str> = ["clippy", "rustfmt"]
+        .into_iter()
+        .filter(|c| {
+            !components
+                .lines()
+                .any(|l| l.trim() == *c || l.starts_with(&format!("{c}-")))
+        })
+        .collect();
+    if !missing.is_empty() {
+        println!(
+            "xtask: installing the rustup components {}",
+            missing.join(", ")
+        );
+        cmd::run(
+            Command::new("rustup")
+                .args(["component", "add"])
+                .args(&missing),
+        )?;
+    }
+    Ok(())
+}
+
+/// Everything `cargo xtask run` needs: the target, QEMU and defmt-print.
+pub fn ensure_for_qemu() -> Result {
+    ensure_toolchain()?;
+    ensure_qemu()?;
+    defmt_print().map(drop)
+}
+
+/// `qemu-system-arm`, from Debian/Ubuntu's `qemu-system-arm` package if missing.
+pub fn ensure_qemu() -> Result {
+    if probe(Command::new("qemu-system-arm").arg("--version")).is_some() {
+        return Ok(());
+    }
+    println!("xtask: qemu-system-arm not found; installing the Debian package qemu-system-arm");
+    if probe(Command::new("apt-get").arg("--version")).is_none() {
+        return Err(Failure::new(
+            "qemu-system-arm is missing and apt-get is not available: install QEMU (qemu-system-arm) by hand",
+        ));
+    }
+    let sudo: Vec<&'static str> = if is_root() {
+        vec![]
+    } else if probe(Command::new("sudo").arg("--version")).is_some() {
+        // Without a terminal nobody can type a password: fail instead of hanging.
+        if std::io::stdin().is_terminal() {
+            vec!["sudo"]
+        } else {
+            vec!["sudo", "-n"]
+        }
+    } else {
+        return Err(Failure::new(
+            "qemu-system-arm is missing and installing it needs root (no sudo found)",
+        ));
+    };
+    let apt = Apt {
+        sudo,
+        extra: Vec::new(),
+    };
+    apt.run(&["update"])?;
+    // `--no-remove`: never trade a package the machine already has for QEMU.
+    let plain = apt.run(&[
+        "install",
+        "-y",
+        "--no-install-recommends",
+        "--no-remove",
+        "qemu-system-arm",
+    ]);
+    if let Err(failure) = plain {
+        // Typically a qemu-utils from backports that the stable qemu-system-arm would
+        // replace: take qemu-system-arm from the same backports suite instead.
+        println!(
+            "xtask: {}; trying the distribution's backports suite",
+            failure.message
+        );
+        install_qemu_from_backports(&apt)?;
+    }
+    if probe(Command::new("qemu-system-arm").arg("--version")).is_none() {
+        return Err(Failure::new(
+            "qemu-system-arm still not runnable after installing it",
+        ));
+    }
+    Ok(())
+}
+
+/// Path of `defmt-print` (1.x, the version that decodes defmt 1 frames), installed
+/// with `cargo install --locked` if missing.
+pub fn defmt_print() -> Result<PathBuf> {
+    if let Some(found) = find_defmt_print() {
+        return Ok(found);
+    }
+    println!(
+        "xtask: defmt-print not found; installing it with cargo install (takes a minute or two)"
+    );
+    cmd::run(cmd::cargo().args(["install", "defmt-print", "--locked", "--version", "^1"]))?;
+    find_defmt_print().ok_or_else(|| {
+        Failure::new(
+            "defmt-print was installed but is neither on PATH nor in cargo's bin directory",
+        )
+    })
+}
+
+fn find_defmt_print() -> Option<PathBuf> {
+    let on_path = PathBuf::from("defmt-print");
+    let cargo_home = std::env::var_os("CARGO_HOME")
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cargo")));
+    let in_cargo_bin = cargo_home.map(|h| h.join("bin").join("defmt-print"));
+    [Some(on_path), in_cargo_bin]
+        .into_iter()
+        .flatten()
+        .find(|p| probe(Command::new(p).arg("--version")).is_some())
+}
+
+/// `apt-get`, through sudo when needed, with extra `-o` options.
+struct Apt {
+    sudo: Vec<&'static str>,
+    extra: Vec<String>,
+}
+
+impl Apt {
+    fn run(&self, args: &[&str]) -> Result {
+        let mut all: Vec<String> = self.sudo.iter().map(|s| s.to_string()).collect();
+        all.extend(["apt-get".to_string(), "-q".to_string()]);
+        all.extend(self.extra.iter().cloned());
+        all.extend(args.iter().map(|s| s.to_string()));
+        cmd::run(
+            Command::new(&all[0])
+                .args(&all[1..])
+                .env("DEBIAN_FRONTEND", "noninteractive"),
+        )
+    }
+}
+
+/// Debian only: installs qemu-system-arm from `<codename>-backports`, added for this
+/// one command through a private copy of the source list (the system's apt
+/// configuration and package lists are left as they were).
+fn install_qemu_from_backports(apt: &Apt) -> Result {
+    let os_release = std::fs::read_to_string("/etc/os-release").unwrap_or_default();
+    let field = |key: &str| {
+        os_release
+            .lines()
+            .find_map(|l| l.strip_prefix(key).and_then(|v| v.strip_prefix('=')))
+            .map(|v| v.trim_matches('"').to_string())
+    };
+    let (Some("debian"), Some(codename)) = (field("ID").as_deref(), field("VERSION_CODENAME"))
+    else {
+        return Err(Failure::new(
+            "qemu-system-arm cannot be installed without removing packages; install it by hand",
+        ));
+    };
+    let dir = std::env::temp_dir().join("xtask-apt-backports");
+    let parts = dir.join("sources.list.d");
+    let lists = dir.join("lists");
+    let io = |e: std::io::Error| Failure::new(format!("preparing {}: {e}", dir.display()));
+    std::fs::create_dir_all(&parts).map_err(io)?;
+    std::fs::create_dir_all(lists.join("partial")).map_err(io)?;
+    if let Ok(entries) = std::fs::read_dir("/etc/apt/sources.list.d") {
+        for entry in entries.flatten() {
+            let name = entry.file_name();
+            let name = name.to_string_lossy();
+            if name.ends_with(".list") || name.ends_with(".sources") {
+                std::fs::copy(entry.path(), parts.join(&*name)).map_err(io)?;
+            }
+        }
+    }
+    let backports = format!(
+        "Types: deb\nURIs: http://deb.debian.org/debian\nSuites: {codename}-backports\nComponents: main\n\
+         Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg\n"
+    );
+    std::fs::write(parts.join("xtask-backports.sources"), backports).map_err(io)?;
+    let apt = Apt {
+        sudo: apt.sudo.clone(),
+        extra: vec![
+            "-o".into(),
+            format!("Dir::Etc::sourceparts={}", parts.display()),
+            "-o".into(),
+            format!("Dir::State::lists={}", lists.display()),
+        ],
+    };
+    apt.run(&["update"])?;
+    let release = format!("{codename}-backports");
+    apt.run(&[
+        "install",
+        "-y",
+        "--no-install-recommends",
+        "--no-remove",
+        "-t",
+        &release,
+        "qemu-system-arm",
+    ])
+}
+
+fn is_root() -> bool {
+    probe(Command::new("id").arg("-u")).is_some_and(|uid| uid.trim() == "0")
+}
