@@ -33,6 +33,7 @@ pub mod math;
 mod model;
 mod outcome;
 mod params;
+pub mod strike;
 mod vector;
 
 pub use error::{Error, Field, Result};
