@@ -17,7 +17,11 @@ use std::time::Duration;
 use clap::{Parser, Subcommand};
 
 #[derive(Parser)]
-#[command(name = "cargo xtask", about = "cuesight project automation")]
+#[command(
+    name = "cargo xtask",
+    bin_name = "cargo xtask",
+    about = "cuesight project automation"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
