@@ -26,6 +26,10 @@ pub enum Field {
     SpinZ,
     /// Ball–ball friction coefficient `μ`.
     Friction,
+    /// Amplitude `b` of the speed-dependent friction law `μ = a + b·exp(−c·v)`.
+    FrictionAmplitude,
+    /// Decay rate `c` (s/m) of the speed-dependent friction law.
+    FrictionDecay,
     /// Energetic coefficient of restitution `e*`.
     Restitution,
     /// Object-ball/table static friction coefficient `μ_s`.
@@ -34,6 +38,14 @@ pub enum Field {
     Radius,
     /// Ball mass `M` (kg).
     Mass,
+    /// Cue speed at the tip impact `V_cue` (m/s, TP A.30).
+    CueSpeed,
+    /// Cue mass `m_c` (kg, TP A.30).
+    CueMass,
+    /// Cue-tip coefficient of restitution `e_t` (TP A.30).
+    TipRestitution,
+    /// Cue-tip offset `b = (side, height)` from the ball centre (m, TP A.30).
+    TipOffset,
 }
 
 impl Field {
@@ -48,10 +60,16 @@ impl Field {
             Field::SpinY => "spin.y",
             Field::SpinZ => "spin.z",
             Field::Friction => "mu",
+            Field::FrictionAmplitude => "mu_b",
+            Field::FrictionDecay => "mu_c",
             Field::Restitution => "restitution",
             Field::TableFriction => "mu_s",
             Field::Radius => "radius",
             Field::Mass => "mass",
+            Field::CueSpeed => "cue_speed",
+            Field::CueMass => "cue_mass",
+            Field::TipRestitution => "tip_restitution",
+            Field::TipOffset => "tip_offset",
         }
     }
 
@@ -64,10 +82,16 @@ impl Field {
             Field::VelocityY => "[-100, 100] m/s",
             Field::SpinX | Field::SpinY | Field::SpinZ => "[-10000, 10000] rad/s",
             Field::Friction => "[0, 1]",
+            Field::FrictionAmplitude => "[0, 1] with a + b <= 1",
+            Field::FrictionDecay => "[0, 100] s/m",
             Field::Restitution => "[0, 1]",
             Field::TableFriction => "[0, 1]",
             Field::Radius => "[0.001, 1] m",
             Field::Mass => "[0.001, 100] kg",
+            Field::CueSpeed => "(0, 20] m/s",
+            Field::CueMass => "[0.1, 2] kg",
+            Field::TipRestitution => "[0, 1]",
+            Field::TipOffset => "|b| <= 0.5 R (side, height in m)",
         }
     }
 }

@@ -15,27 +15,34 @@
 
 use crate::impact::Impact;
 use crate::math;
-use crate::outcome::{Outcome, Regime};
+use crate::outcome::{Outcome, Regime, SpecificImpulses};
 use crate::params::Params;
 
 pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
-    let mu = params.mu();
+    let law = params.friction_law();
     let approach = impact.velocity().x;
     let frictionless_normal = 0.5 * (1.0 + params.restitution()) * approach;
     let (slip_y, slip_z) = impact.initial_slip(params.radius());
     let scale = math::max(math::abs(slip_y), math::abs(slip_z));
-    if mu == 0.0 || scale == 0.0 {
+    if law.is_frictionless() || scale == 0.0 {
         // No friction, or no slip and so no friction direction (exact gearing).
-        let regime = if mu == 0.0 {
+        let regime = if law.is_frictionless() {
             Regime::Frictionless
         } else {
             Regime::Gripping
         };
-        return Outcome::from_impulses(params, impact, frictionless_normal, 0.0, 0.0, 0.0, regime);
+        return Outcome::from_impulses(
+            params,
+            impact,
+            SpecificImpulses::normal_only(frictionless_normal),
+            regime,
+        );
     }
     // Unit slip direction, scaled first so that tiny slips cannot underflow.
     let (unit_y, unit_z) = (slip_y / scale, slip_z / scale);
     let inv_norm = 1.0 / math::sqrt(unit_y * unit_y + unit_z * unit_z);
+    // First order: μ at the initial slip speed (TP A.14 does the same).
+    let mu = law.at(scale / inv_norm);
     let cos_theta0 = -unit_y * inv_norm;
     let sin_theta0 = -unit_z * inv_norm;
     let friction = mu * frictionless_normal;
@@ -44,5 +51,16 @@ pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
     let mu_s = if sin_theta0 < 0.0 { params.mu_s() } else { 0.0 };
     let table = mu_s * math::abs(j_z);
     let normal = frictionless_normal * (1.0 - 0.5 * mu * mu_s * sin_theta0);
-    Outcome::from_impulses(params, impact, normal, j_y, j_z, table, Regime::Sliding)
+    Outcome::from_impulses(
+        params,
+        impact,
+        SpecificImpulses {
+            normal,
+            friction_y: j_y,
+            friction_z: j_z,
+            table,
+            table_y: 0.0,
+        },
+        Regime::Sliding,
+    )
 }

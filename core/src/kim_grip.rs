@@ -33,9 +33,10 @@
 //! restitution (`W_restitution = e*² |W_compression|`, seed eq. (37)) give `p_f` in
 //! closed form on each linear piece.
 
+use crate::friction::FrictionLaw;
 use crate::impact::Impact;
 use crate::math;
-use crate::outcome::{Outcome, Regime};
+use crate::outcome::{Outcome, Regime, SpecificImpulses};
 use crate::params::Params;
 use crate::NU;
 
@@ -43,19 +44,24 @@ use crate::NU;
 const K_Y: f32 = 2.0 * (1.0 + NU) / NU;
 
 pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
-    let mu = params.mu();
+    let law = params.friction_law();
     let restitution = params.restitution();
     let approach = impact.velocity().x;
     let frictionless_normal = 0.5 * (1.0 + restitution) * approach;
     let (slip_y, slip_z) = impact.initial_slip(params.radius());
     let scale = math::max(math::abs(slip_y), math::abs(slip_z));
-    if mu == 0.0 || scale == 0.0 {
-        let regime = if mu == 0.0 {
+    if law.is_frictionless() || scale == 0.0 {
+        let regime = if law.is_frictionless() {
             Regime::Frictionless
         } else {
             Regime::Gripping
         };
-        return Outcome::from_impulses(params, impact, frictionless_normal, 0.0, 0.0, 0.0, regime);
+        return Outcome::from_impulses(
+            params,
+            impact,
+            SpecificImpulses::normal_only(frictionless_normal),
+            regime,
+        );
     }
 
     let object_pressed = slip_z > 0.0;
@@ -65,20 +71,52 @@ pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
         (2.0 + NU) / NU
     };
     let slip = TangentialSlip::new(slip_y, slip_z, scale, k_z);
+    if slip.stick_budget == 0.0 {
+        // A slip so small that the impulse cancelling it underflows: exact gearing.
+        return Outcome::from_impulses(
+            params,
+            impact,
+            SpecificImpulses::normal_only(frictionless_normal),
+            Regime::Gripping,
+        );
+    }
+    let slip_speed = slip.unit_norm * scale;
+    // Effective compliance along the slip path, k̄ = |v₀| / s* (see `friction`).
+    let compliance = slip_speed / slip.stick_budget;
+    // p*: the normal impulse at which the slip would stop (may be +inf for tiny μ).
+    let grip_normal = law.normal_impulse_between(slip_speed, 0.0, compliance);
+    // Friction budget S(p) = ∫ μ dp spent by normal impulse p while sliding.
+    let budget_after = |normal: f32| -> f32 {
+        if normal >= grip_normal {
+            slip.stick_budget
+        } else {
+            match law {
+                FrictionLaw::Constant(mu) => mu * normal,
+                FrictionLaw::SpeedDependent { .. } => {
+                    (slip_speed - law.slip_after(slip_speed, normal, compliance)) / compliance
+                }
+            }
+        }
+    };
 
-    // Direction at the first-order budget, for the table-friction rate ρ.
-    let first_budget = mu * frictionless_normal;
+    // Direction at the first-order budget, for the table-friction rate ρ (table
+    // impulse per unit normal impulse while sliding).
+    let first_budget = budget_after(frictionless_normal);
     let (_, first_dir_z) = slip.friction_direction(first_budget);
+    let first_span = if frictionless_normal < grip_normal {
+        frictionless_normal
+    } else {
+        grip_normal
+    };
     let table_rate = if object_pressed {
-        mu * params.mu_s() * math::abs(first_dir_z)
+        params.mu_s() * math::abs(first_dir_z) * first_budget / first_span
     } else {
         0.0
     };
-    let grip_normal = slip.stick_budget / mu; // p* (may be +inf for tiny μ: harmless)
     let normal = final_normal_impulse(approach, restitution, table_rate, grip_normal);
 
-    let budget = mu * normal;
-    let (j_y, j_z, regime) = if budget < slip.stick_budget {
+    let (j_y, j_z, regime) = if normal < grip_normal {
+        let budget = budget_after(normal);
         let (dir_y, dir_z) = slip.friction_direction(budget);
         (budget * dir_y, budget * dir_z, Regime::Sliding)
     } else {
@@ -90,7 +128,34 @@ pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
         grip_normal
     };
     let table = table_rate * pressing_span;
-    Outcome::from_impulses(params, impact, normal, j_y, j_z, table, regime)
+    let (table_x, table_y) = table_friction_components(table, pressing_span, j_y, j_z);
+    let impulses = SpecificImpulses {
+        normal,
+        friction_y: j_y,
+        friction_z: j_z,
+        table: table_x,
+        table_y,
+    };
+    Outcome::from_impulses(params, impact, impulses, regime)
+}
+
+/// Split the table friction `table` (m/s) on the pressed object ball along its
+/// table-contact slip `c = V + Ω × (−R ẑ)` (first-principles Coulomb direction; the seed's
+/// eq. (7) takes `c ∥ x̂`). At the end of the pressing span every impulse has grown
+/// roughly in proportion, so the final `c` gives the mean direction:
+/// `c_x = p − X − (j_z + X)/ν` (the spin `Ω_y` adds `−R Ω_y`), `c_y = j_y`. Returns the
+/// `−x` magnitude and the `y` component of the table impulse.
+fn table_friction_components(table: f32, span: f32, j_y: f32, j_z: f32) -> (f32, f32) {
+    if table == 0.0 {
+        return (0.0, 0.0);
+    }
+    let slip_x = span - table - (j_z + table) / NU;
+    let slip_y = j_y;
+    let length = math::sqrt(slip_x * slip_x + slip_y * slip_y);
+    if length == 0.0 {
+        return (table, 0.0);
+    }
+    (table * slip_x / length, -table * slip_y / length)
 }
 
 /// The initial tangential slip and the quantities derived from it.

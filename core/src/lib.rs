@@ -25,6 +25,7 @@
 #![deny(missing_docs)]
 
 mod error;
+mod friction;
 mod ideal;
 mod impact;
 mod kim;
@@ -37,6 +38,7 @@ pub mod strike;
 mod vector;
 
 pub use error::{Error, Field, Result};
+pub use friction::FrictionLaw;
 pub use impact::Impact;
 pub use model::{collide, Model};
 pub use outcome::{BallState, Impulses, Outcome, Regime};

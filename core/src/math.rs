@@ -102,6 +102,32 @@ pub fn cos(x: f32) -> f32 {
     }
 }
 
+/// `e^x`. Only for the speed-dependent friction law.
+#[inline]
+pub fn exp(x: f32) -> f32 {
+    #[cfg(feature = "libm")]
+    {
+        libm::expf(x)
+    }
+    #[cfg(feature = "micromath")]
+    {
+        x.exp()
+    }
+}
+
+/// Natural logarithm of `x` (`x > 0`). Only for the speed-dependent friction law.
+#[inline]
+pub fn ln(x: f32) -> f32 {
+    #[cfg(feature = "libm")]
+    {
+        libm::logf(x)
+    }
+    #[cfg(feature = "micromath")]
+    {
+        x.ln()
+    }
+}
+
 /// Four-quadrant arctangent of `y / x` in radians, in `[-π, π]`. Reporting only.
 #[inline]
 pub fn atan2(y: f32, x: f32) -> f32 {

@@ -49,9 +49,38 @@ pub struct Impulses {
     pub normal: f32,
     /// Ball–ball friction impulse on the object ball; `x` is always zero.
     pub friction: Vec3,
-    /// Table friction impulse on the object ball, along `−x` (`μ_s` × its table normal
-    /// impulse); zero unless the object ball is pressed into the table (topspin).
+    /// Magnitude of the table friction impulse on the object ball (`μ_s` × its table
+    /// normal impulse), acting against its table-contact slip, i.e. close to `−x`; zero
+    /// unless the object ball is pressed into the table (topspin).
     pub table_friction: f32,
+}
+
+/// Impulses per unit mass (m/s) handed from a model to [`Outcome::from_impulses`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct SpecificImpulses {
+    /// Ball–ball normal impulse on the object ball, along `+x`.
+    pub normal: f32,
+    /// Ball–ball friction impulse on the object ball, `y` component.
+    pub friction_y: f32,
+    /// Ball–ball friction impulse on the object ball, `z` component.
+    pub friction_z: f32,
+    /// Table friction on the object ball along `−x`.
+    pub table: f32,
+    /// Table friction on the object ball, `y` component.
+    pub table_y: f32,
+}
+
+impl SpecificImpulses {
+    /// Only a normal impulse.
+    pub const fn normal_only(normal: f32) -> Self {
+        Self {
+            normal,
+            friction_y: 0.0,
+            friction_z: 0.0,
+            table: 0.0,
+            table_y: 0.0,
+        }
+    }
 }
 
 /// Result of one collision.
@@ -69,9 +98,7 @@ pub struct Outcome {
 }
 
 impl Outcome {
-    /// Assemble both balls' final states from the impulses, all given per unit mass
-    /// (m/s): normal impulse `normal`, friction impulse on the object ball `(0, j_y,
-    /// j_z)`, and table friction `table` on the object ball along `−x`.
+    /// Assemble both balls' final states from the impulses `j` (all per unit mass, m/s).
     ///
     /// This is plain rigid-body bookkeeping (`M ΔV = ΣJ`, `I Δω = Σ r × J`, seed eqs.
     /// (17)–(18) with erratum E1): the ball–ball contact is at `+R x̂` from the cue
@@ -81,12 +108,16 @@ impl Outcome {
     pub(crate) fn from_impulses(
         params: &Params,
         impact: &Impact,
-        normal: f32,
-        j_y: f32,
-        j_z: f32,
-        table: f32,
+        j: SpecificImpulses,
         regime: Regime,
     ) -> Self {
+        let SpecificImpulses {
+            normal,
+            friction_y: j_y,
+            friction_z: j_z,
+            table,
+            table_y,
+        } = j;
         let radius = params.radius();
         let mass = params.mass();
         // Δω per unit specific impulse at the contact: R / (ν M R²) · M = 1 / (ν R).
@@ -94,11 +125,16 @@ impl Outcome {
         let u = impact.velocity();
         let w = impact.spin();
         let cue_velocity = Vec3::new(u.x - normal, u.y - j_y, if j_z < 0.0 { -j_z } else { 0.0 });
-        let object_velocity = Vec3::new(normal - table, j_y, if j_z > 0.0 { j_z } else { 0.0 });
+        let object_velocity = Vec3::new(
+            normal - table,
+            j_y + table_y,
+            if j_z > 0.0 { j_z } else { 0.0 },
+        );
         // Cue ball: r × (−J) with r = R x̂ gives R (0, j_z, −j_y).
         let cue_spin = w + Vec3::new(0.0, j_z, -j_y) * spin_per_impulse;
-        // Object ball: (−R x̂) × J gives the same; table friction (−R ẑ) × (−X x̂) = R X ŷ.
-        let object_spin = Vec3::new(0.0, j_z + table, -j_y) * spin_per_impulse;
+        // Object ball: (−R x̂) × J gives the same; table friction at −R ẑ:
+        // (−R ẑ) × (−X, T_y, 0) = R (T_y, X, 0).
+        let object_spin = Vec3::new(table_y, j_z + table, -j_y) * spin_per_impulse;
         Self {
             cue_ball: BallState {
                 velocity: cue_velocity,
@@ -112,7 +148,7 @@ impl Outcome {
             impulses: Impulses {
                 normal: normal * mass,
                 friction: Vec3::new(0.0, j_y * mass, j_z * mass),
-                table_friction: table * mass,
+                table_friction: math::sqrt(table * table + table_y * table_y) * mass,
             },
         }
     }

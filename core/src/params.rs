@@ -1,6 +1,7 @@
 //! Physical parameters of a collision, validated on construction.
 
 use crate::error::{check, Field, Result};
+use crate::friction::FrictionLaw;
 
 /// Ball and contact parameters (seed §2, physics-notes §5).
 ///
@@ -10,7 +11,7 @@ use crate::error::{check, Field, Result};
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Params {
-    mu: f32,
+    friction: FrictionLaw,
     restitution: f32,
     mu_s: f32,
     radius: f32,
@@ -20,7 +21,7 @@ pub struct Params {
 impl Params {
     /// Pool defaults: μ = 0.05, e* = 0.95, μ_s = 0.3, R = 28.575 mm, M = 0.17 kg.
     pub const POOL: Self = Self {
-        mu: 0.05,
+        friction: FrictionLaw::Constant(0.05),
         restitution: 0.95,
         mu_s: 0.3,
         radius: 0.028575,
@@ -36,7 +37,7 @@ impl Params {
     /// * `mass` — M in kilograms, in `[0.001, 100]`.
     pub fn new(mu: f32, restitution: f32, mu_s: f32, radius: f32, mass: f32) -> Result<Self> {
         Ok(Self {
-            mu: check(Field::Friction, mu, 0.0, 1.0, false)?,
+            friction: FrictionLaw::constant(mu)?,
             restitution: check(Field::Restitution, restitution, 0.0, 1.0, false)?,
             mu_s: check(Field::TableFriction, mu_s, 0.0, 1.0, false)?,
             radius: check(Field::Radius, radius, 0.001, 1.0, false)?,
@@ -44,29 +45,53 @@ impl Params {
         })
     }
 
-    /// Replace μ (validated).
+    /// Replace the friction by a constant μ (validated).
     pub fn with_mu(self, mu: f32) -> Result<Self> {
-        Self::new(mu, self.restitution, self.mu_s, self.radius, self.mass)
+        Ok(Self {
+            friction: FrictionLaw::constant(mu)?,
+            ..self
+        })
+    }
+
+    /// Replace the friction law (already validated by its constructor).
+    pub fn with_friction_law(self, friction: FrictionLaw) -> Self {
+        Self { friction, ..self }
     }
 
     /// Replace e* (validated).
     pub fn with_restitution(self, restitution: f32) -> Result<Self> {
-        Self::new(self.mu, restitution, self.mu_s, self.radius, self.mass)
+        Ok(Self {
+            restitution: check(Field::Restitution, restitution, 0.0, 1.0, false)?,
+            ..self
+        })
     }
 
     /// Replace μ_s (validated).
     pub fn with_mu_s(self, mu_s: f32) -> Result<Self> {
-        Self::new(self.mu, self.restitution, mu_s, self.radius, self.mass)
+        Ok(Self {
+            mu_s: check(Field::TableFriction, mu_s, 0.0, 1.0, false)?,
+            ..self
+        })
     }
 
     /// Replace R and M (validated).
     pub fn with_ball(self, radius: f32, mass: f32) -> Result<Self> {
-        Self::new(self.mu, self.restitution, self.mu_s, radius, mass)
+        Ok(Self {
+            radius: check(Field::Radius, radius, 0.001, 1.0, false)?,
+            mass: check(Field::Mass, mass, 0.001, 100.0, false)?,
+            ..self
+        })
     }
 
-    /// Ball–ball friction coefficient μ.
-    pub const fn mu(&self) -> f32 {
-        self.mu
+    /// Ball–ball friction coefficient μ: the constant value, or for a speed-dependent
+    /// law its value at zero slip speed (the stick limit).
+    pub fn mu(&self) -> f32 {
+        self.friction.at(0.0)
+    }
+
+    /// The ball–ball friction law.
+    pub const fn friction_law(&self) -> FrictionLaw {
+        self.friction
     }
     /// Energetic coefficient of restitution e*.
     pub const fn restitution(&self) -> f32 {

@@ -36,8 +36,13 @@ const NU: f64 = 0.4;
 /// Parameters of a reference solve (SI units).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ReferenceParams {
-    /// Ball–ball friction coefficient μ.
+    /// Ball–ball friction coefficient μ; with `mu_b > 0` the high-speed limit `a` of
+    /// `μ(v) = a + b·exp(−c·v)` (TP A.14), `v` the slip speed.
     pub mu: f64,
+    /// Amplitude `b` of the speed-dependent part (0: constant μ).
+    pub mu_b: f64,
+    /// Decay rate `c` (s/m) of the speed-dependent part.
+    pub mu_c: f64,
     /// Energetic coefficient of restitution e*.
     pub restitution: f64,
     /// Object-ball/table friction coefficient μ_s.
@@ -53,8 +58,14 @@ pub struct ReferenceParams {
 impl ReferenceParams {
     /// The same parameters as a validated core `Params` (cue-ball/table friction 0).
     pub fn from_core(p: &cuesight::Params) -> Self {
+        let (mu, mu_b, mu_c) = match p.friction_law() {
+            cuesight::FrictionLaw::Constant(mu) => (mu as f64, 0.0, 0.0),
+            cuesight::FrictionLaw::SpeedDependent { a, b, c } => (a as f64, b as f64, c as f64),
+        };
         Self {
-            mu: p.mu() as f64,
+            mu,
+            mu_b,
+            mu_c,
             restitution: p.restitution() as f64,
             mu_s: p.mu_s() as f64,
             cue_table_friction: 0.0,
@@ -69,6 +80,27 @@ impl ReferenceParams {
 pub struct ReferenceConfig {
     /// Number of steps across the frictionless impact `(1 + e*) M U_x / 2`.
     pub steps: usize,
+}
+
+impl ReferenceParams {
+    /// Constant-μ parameters (no cue-ball/table friction).
+    pub fn constant(mu: f64, restitution: f64, mu_s: f64, radius: f64, mass: f64) -> Self {
+        Self {
+            mu,
+            mu_b: 0.0,
+            mu_c: 0.0,
+            restitution,
+            mu_s,
+            cue_table_friction: 0.0,
+            radius,
+            mass,
+        }
+    }
+
+    /// Friction coefficient at slip speed `v` (m/s).
+    pub fn mu_at(&self, slip_speed: f64) -> f64 {
+        self.mu + self.mu_b * (-self.mu_c * slip_speed).exp()
+    }
 }
 
 impl Default for ReferenceConfig {
@@ -263,23 +295,27 @@ impl Solver {
     /// Sliding step: friction `μ dp` against the slip, direction from the midpoint.
     fn slide(&self, s: &State, dp: f64) -> State {
         let t0 = self.tangential_slip(s);
-        let budget = self.p.mu * dp;
-        if t0.length() == 0.0 || budget == 0.0 {
+        if t0.length() == 0.0 || dp == 0.0 || self.p.mu_at(0.0) == 0.0 {
             return self.step(s, dp, DVec2::ZERO);
         }
-        let half = self.step(s, 0.5 * dp, -t0.normalize() * 0.5 * budget);
+        let half = self.step(
+            s,
+            0.5 * dp,
+            -t0.normalize() * 0.5 * dp * self.p.mu_at(t0.length()),
+        );
         let t_half = self.tangential_slip(&half);
         let direction = if t_half.length() > 0.0 && t_half.dot(t0) > 0.0 {
             -t_half.normalize()
         } else {
             -t0.normalize()
         };
-        self.step(s, dp, direction * budget)
+        self.step(s, dp, direction * dp * self.p.mu_at(t_half.length()))
     }
 
     /// Advance by `dp` in the given mode; returns the new state and mode.
     fn advance(&self, s: &State, dp: f64, mode: Mode, depth: u32) -> (State, Mode) {
-        let budget = self.p.mu * dp;
+        // Friction cone for sticking: μ at zero slip (the largest for TP A.14's law).
+        let budget = self.p.mu_at(0.0) * dp;
         let t0 = self.tangential_slip(s);
         let k_guess = self.p.mass / 7.0;
         if mode == Mode::Stick || t0.length() <= 1e-13 * self.speed_scale {
@@ -333,6 +369,8 @@ pub fn solve(
     config: &ReferenceConfig,
 ) -> Result<ReferenceOutcome, ReferenceError> {
     check("mu", params.mu, 0.0, 10.0)?;
+    check("mu_b", params.mu_b, 0.0, 10.0)?;
+    check("mu_c", params.mu_c, 0.0, 1e3)?;
     check("restitution", params.restitution, 0.0, 1.0)?;
     check("mu_s", params.mu_s, 0.0, 10.0)?;
     check("cue_table_friction", params.cue_table_friction, 0.0, 10.0)?;
@@ -418,7 +456,7 @@ pub fn solve(
             break; // cannot happen for valid input: v_x grows by ≥ dp/M per step
         }
     }
-    let regime = if params.mu == 0.0 {
+    let regime = if params.mu_at(0.0) == 0.0 {
         ReferenceRegime::Frictionless
     } else if stick_impulse.is_some() {
         ReferenceRegime::Gripping

@@ -7,14 +7,7 @@ use cuesight_host::reference::{solve, ReferenceConfig, ReferenceParams, Referenc
 use glam::DVec3;
 
 fn params(mu: f64, restitution: f64, mu_s: f64) -> ReferenceParams {
-    ReferenceParams {
-        mu,
-        restitution,
-        mu_s,
-        cue_table_friction: 0.0,
-        radius: 0.028575,
-        mass: 0.17,
-    }
+    ReferenceParams::constant(mu, restitution, mu_s, 0.028575, 0.17)
 }
 
 /// Halving the step changes no output by more than 1e-6 relative (velocities to U,
