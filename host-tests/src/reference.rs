@@ -80,6 +80,9 @@ impl ReferenceParams {
 pub struct ReferenceConfig {
     /// Number of steps across the frictionless impact `(1 + e*) M U_x / 2`.
     pub steps: usize,
+    /// Apply table friction along `∓x` only, as the seed's eq. (7) approximates,
+    /// instead of against the table-contact slip (for measuring that approximation).
+    pub table_friction_along_x: bool,
 }
 
 impl ReferenceParams {
@@ -105,7 +108,10 @@ impl ReferenceParams {
 
 impl Default for ReferenceConfig {
     fn default() -> Self {
-        Self { steps: 1000 }
+        Self {
+            steps: 1000,
+            table_friction_along_x: false,
+        }
     }
 }
 
@@ -195,6 +201,7 @@ struct State {
 
 struct Solver {
     p: ReferenceParams,
+    along_x: bool,
     inertia: f64,
     speed_scale: f64,
 }
@@ -242,7 +249,11 @@ impl Solver {
         self.apply(ball, self.r_table(), DVec3::new(0.0, 0.0, normal));
         ball.velocity.z = 0.0;
         let contact = ball.velocity + ball.spin.cross(self.r_table());
-        let horizontal = DVec3::new(contact.x, contact.y, 0.0);
+        let horizontal = if self.along_x {
+            DVec3::new(contact.x, 0.0, 0.0)
+        } else {
+            DVec3::new(contact.x, contact.y, 0.0)
+        };
         let speed = horizontal.length();
         if speed == 0.0 || friction_coefficient == 0.0 {
             return DVec3::ZERO;
@@ -384,6 +395,7 @@ pub fn solve(
     }
     let solver = Solver {
         p: *params,
+        along_x: config.table_friction_along_x,
         inertia: NU * params.mass * params.radius * params.radius,
         speed_scale: velocity.length().max(params.radius * spin.length()),
     };

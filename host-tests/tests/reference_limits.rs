@@ -17,6 +17,7 @@ fn step_size_convergence() {
     let coarse = ReferenceConfig::default();
     let fine = ReferenceConfig {
         steps: 2 * coarse.steps,
+        ..coarse
     };
     let mut worst = 0.0f64;
     for scene in scenes(99, 300) {
