@@ -10,7 +10,7 @@
 //! `G(v) = [v + ln(a + b e^{−cv}) / c] / a`.
 
 use crate::error::{check, Field, Result};
-use crate::math;
+use crate::real::Real;
 
 /// How the ball–ball friction coefficient depends on the slip speed.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -63,9 +63,16 @@ impl FrictionLaw {
 
     /// μ at slip speed `v` (m/s).
     pub fn at(&self, slip_speed: f32) -> f32 {
+        self.at_in(slip_speed)
+    }
+
+    /// μ at slip speed `v` (m/s), evaluated in `R`.
+    pub(crate) fn at_in<R: Real>(&self, slip_speed: R) -> R {
         match *self {
-            Self::Constant(mu) => mu,
-            Self::SpeedDependent { a, b, c } => a + b * math::exp(-c * slip_speed),
+            Self::Constant(mu) => R::of(mu),
+            Self::SpeedDependent { a, b, c } => {
+                R::of(a) + R::of(b) * R::exp(-R::of(c) * slip_speed)
+            }
         }
     }
 
@@ -76,40 +83,35 @@ impl FrictionLaw {
 
     /// Specific normal impulse (m/s) over which the slip speed falls from `from` to
     /// `to` (`0 ≤ to ≤ from`) at effective compliance `compliance`.
-    pub(crate) fn normal_impulse_between(&self, from: f32, to: f32, compliance: f32) -> f32 {
+    pub(crate) fn normal_impulse_between<R: Real>(&self, from: R, to: R, compliance: R) -> R {
         match *self {
-            Self::Constant(mu) => (from - to) / (mu * compliance),
+            Self::Constant(mu) => (from - to) / (R::of(mu) * compliance),
             Self::SpeedDependent { a, b, c } => {
-                if c == 0.0 {
+                let (a, b, c) = (R::of(a), R::of(b), R::of(c));
+                if c == R::ZERO {
                     return (from - to) / ((a + b) * compliance);
                 }
-                let ratio = (a + b * math::exp(-c * from)) / (a + b * math::exp(-c * to));
-                ((from - to) + math::ln(ratio) / c) / (a * compliance)
+                let ratio = (a + b * R::exp(-c * from)) / (a + b * R::exp(-c * to));
+                ((from - to) + R::ln(ratio) / c) / (a * compliance)
             }
         }
     }
 
     /// Slip speed (m/s) after a specific normal impulse `normal` of sliding from `from`
     /// (zero if the slip would stop before).
-    pub(crate) fn slip_after(&self, from: f32, normal: f32, compliance: f32) -> f32 {
+    pub(crate) fn slip_after<R: Real>(&self, from: R, normal: R, compliance: R) -> R {
         match *self {
-            Self::Constant(mu) => math::max(from - mu * compliance * normal, 0.0),
+            Self::Constant(mu) => R::max(from - R::of(mu) * compliance * normal, R::ZERO),
             Self::SpeedDependent { .. } => {
-                if normal >= self.normal_impulse_between(from, 0.0, compliance) {
-                    return 0.0;
+                if normal >= self.normal_impulse_between(from, R::ZERO, compliance) {
+                    return R::ZERO;
                 }
                 // Newton on D(v) = (G(v₀) − G(v))/k̄ − p, D' = −1/(k̄ μ(v)), bracketed.
-                let mut slip = math::max(from - self.at(from) * compliance * normal, 0.0);
+                let mut slip = R::max(from - self.at_in(from) * compliance * normal, R::ZERO);
                 for _ in 0..NEWTON_ITERATIONS {
                     let residual = self.normal_impulse_between(from, slip, compliance) - normal;
-                    slip += residual * compliance * self.at(slip);
-                    slip = if slip < 0.0 {
-                        0.0
-                    } else if slip > from {
-                        from
-                    } else {
-                        slip
-                    };
+                    slip = slip + residual * compliance * self.at_in(slip);
+                    slip = R::min(R::max(slip, R::ZERO), from);
                 }
                 slip
             }
@@ -124,9 +126,9 @@ mod tests {
     #[test]
     fn constant_law_is_linear() {
         let law = FrictionLaw::Constant(0.05);
-        assert!((law.normal_impulse_between(1.0, 0.5, 7.0) - 0.5 / 0.35).abs() < 1e-6);
-        assert!((law.slip_after(1.0, 0.5 / 0.35, 7.0) - 0.5).abs() < 1e-6);
-        assert_eq!(law.slip_after(1.0, 100.0, 7.0), 0.0);
+        assert!((law.normal_impulse_between(1.0f32, 0.5, 7.0) - 0.5 / 0.35).abs() < 1e-6);
+        assert!((law.slip_after(1.0f32, 0.5 / 0.35, 7.0) - 0.5).abs() < 1e-6);
+        assert_eq!(law.slip_after(1.0f32, 100.0, 7.0), 0.0);
     }
 
     #[test]

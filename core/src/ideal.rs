@@ -3,11 +3,12 @@
 use crate::impact::Impact;
 use crate::outcome::{Outcome, Regime, SpecificImpulses};
 use crate::params::Params;
+use crate::real::Real;
 
 /// Equal masses, `e* = 1`, `μ = 0`: the cue ball hands its normal velocity `U_x` to the
 /// object ball and keeps its tangential velocity and spin (seed §1, Fig. 1).
-pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
-    let normal = impact.velocity().x; // specific impulse (m/s): (1 + e) U_x / 2 with e = 1
+pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
+    let normal = R::of(impact.velocity().x); // specific impulse (m/s): (1 + e) U_x / 2 with e = 1
     Outcome::from_impulses(
         params,
         impact,

@@ -14,17 +14,19 @@
 //! The model assumes the contact slides throughout; see `kim_grip` for the fix.
 
 use crate::impact::Impact;
-use crate::math;
+use crate::kim_grip::initial_slip;
 use crate::outcome::{Outcome, Regime, SpecificImpulses};
 use crate::params::Params;
+use crate::real::Real;
 
-pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
+pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
+    let half = R::of(0.5);
     let law = params.friction_law();
-    let approach = impact.velocity().x;
-    let frictionless_normal = 0.5 * (1.0 + params.restitution()) * approach;
-    let (slip_y, slip_z) = impact.initial_slip(params.radius());
-    let scale = math::max(math::abs(slip_y), math::abs(slip_z));
-    if law.is_frictionless() || scale == 0.0 {
+    let approach = R::of(impact.velocity().x);
+    let frictionless_normal = half * (R::ONE + R::of(params.restitution())) * approach;
+    let (slip_y, slip_z) = initial_slip::<R>(params, impact);
+    let scale = R::max(R::abs(slip_y), R::abs(slip_z));
+    if law.is_frictionless() || scale == R::ZERO {
         // No friction, or no slip and so no friction direction (exact gearing).
         let regime = if law.is_frictionless() {
             Regime::Frictionless
@@ -40,27 +42,27 @@ pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
     }
     // Unit slip direction, scaled first so that tiny slips cannot underflow.
     let (unit_y, unit_z) = (slip_y / scale, slip_z / scale);
-    let inv_norm = 1.0 / math::sqrt(unit_y * unit_y + unit_z * unit_z);
+    let inv_norm = R::ONE / R::sqrt(unit_y * unit_y + unit_z * unit_z);
     // First order: μ at the initial slip speed (TP A.14 does the same).
-    let mu = law.at(scale / inv_norm);
+    let mu = law.at_in(scale / inv_norm);
     let cos_theta0 = -unit_y * inv_norm;
     let sin_theta0 = -unit_z * inv_norm;
     let friction = mu * frictionless_normal;
     let (j_y, j_z) = (friction * cos_theta0, friction * sin_theta0);
     // μ_s acts only through the pressed object ball: μ_s Θ(−θ₀).
-    let mu_s = if sin_theta0 < 0.0 { params.mu_s() } else { 0.0 };
-    let table = mu_s * math::abs(j_z);
-    let normal = frictionless_normal * (1.0 - 0.5 * mu * mu_s * sin_theta0);
-    Outcome::from_impulses(
-        params,
-        impact,
-        SpecificImpulses {
-            normal,
-            friction_y: j_y,
-            friction_z: j_z,
-            table,
-            table_y: 0.0,
-        },
-        Regime::Sliding,
-    )
+    let mu_s = if sin_theta0 < R::ZERO {
+        R::of(params.mu_s())
+    } else {
+        R::ZERO
+    };
+    let table = mu_s * R::abs(j_z);
+    let normal = frictionless_normal * (R::ONE - half * mu * mu_s * sin_theta0);
+    let impulses = SpecificImpulses {
+        normal,
+        friction_y: j_y,
+        friction_z: j_z,
+        table,
+        table_y: R::ZERO,
+    };
+    Outcome::from_impulses(params, impact, impulses, Regime::Sliding)
 }

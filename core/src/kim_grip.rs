@@ -35,22 +35,30 @@
 
 use crate::friction::FrictionLaw;
 use crate::impact::Impact;
-use crate::math;
 use crate::outcome::{Outcome, Regime, SpecificImpulses};
 use crate::params::Params;
-use crate::NU;
+use crate::real::Real;
 
-/// Slip change per unit specific friction impulse along `y` (seed eq. (19)): `2(1+ν)/ν`.
-const K_Y: f32 = 2.0 * (1.0 + NU) / NU;
+/// `ν = 2/5`, exact in `R`.
+fn nu<R: Real>() -> R {
+    R::of(2.0) / R::of(5.0)
+}
 
-pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
+/// Slip change per unit specific friction impulse along `y` (seed eq. (19)):
+/// `2(1+ν)/ν = 7`.
+fn k_y<R: Real>() -> R {
+    R::of(7.0)
+}
+
+pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
+    let half = R::of(0.5);
     let law = params.friction_law();
-    let restitution = params.restitution();
-    let approach = impact.velocity().x;
-    let frictionless_normal = 0.5 * (1.0 + restitution) * approach;
-    let (slip_y, slip_z) = impact.initial_slip(params.radius());
-    let scale = math::max(math::abs(slip_y), math::abs(slip_z));
-    if law.is_frictionless() || scale == 0.0 {
+    let restitution = R::of(params.restitution());
+    let approach = R::of(impact.velocity().x);
+    let frictionless_normal = half * (R::ONE + restitution) * approach;
+    let (slip_y, slip_z) = initial_slip::<R>(params, impact);
+    let scale = R::max(R::abs(slip_y), R::abs(slip_z));
+    if law.is_frictionless() || scale == R::ZERO {
         let regime = if law.is_frictionless() {
             Regime::Frictionless
         } else {
@@ -64,14 +72,14 @@ pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
         );
     }
 
-    let object_pressed = slip_z > 0.0;
+    let object_pressed = slip_z > R::ZERO;
     let k_z = if object_pressed {
-        (2.0 + NU - params.mu_s()) / NU
+        (R::of(2.0) + nu::<R>() - R::of(params.mu_s())) / nu::<R>()
     } else {
-        (2.0 + NU) / NU
+        (R::of(2.0) + nu::<R>()) / nu::<R>()
     };
     let slip = TangentialSlip::new(slip_y, slip_z, scale, k_z);
-    if slip.stick_budget == 0.0 {
+    if slip.stick_budget == R::ZERO {
         // A slip so small that the impulse cancelling it underflows: exact gearing.
         return Outcome::from_impulses(
             params,
@@ -84,14 +92,14 @@ pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
     // Effective compliance along the slip path, k̄ = |v₀| / s* (see `friction`).
     let compliance = slip_speed / slip.stick_budget;
     // p*: the normal impulse at which the slip would stop (may be +inf for tiny μ).
-    let grip_normal = law.normal_impulse_between(slip_speed, 0.0, compliance);
+    let grip_normal = law.normal_impulse_between(slip_speed, R::ZERO, compliance);
     // Friction budget S(p) = ∫ μ dp spent by normal impulse p while sliding.
-    let budget_after = |normal: f32| -> f32 {
+    let budget_after = |normal: R| -> R {
         if normal >= grip_normal {
             slip.stick_budget
         } else {
             match law {
-                FrictionLaw::Constant(mu) => mu * normal,
+                FrictionLaw::Constant(mu) => R::of(mu) * normal,
                 FrictionLaw::SpeedDependent { .. } => {
                     (slip_speed - law.slip_after(slip_speed, normal, compliance)) / compliance
                 }
@@ -103,15 +111,11 @@ pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
     // impulse per unit normal impulse while sliding).
     let first_budget = budget_after(frictionless_normal);
     let (_, first_dir_z) = slip.friction_direction(first_budget);
-    let first_span = if frictionless_normal < grip_normal {
-        frictionless_normal
-    } else {
-        grip_normal
-    };
+    let first_span = R::min(frictionless_normal, grip_normal);
     let table_rate = if object_pressed {
-        params.mu_s() * math::abs(first_dir_z) * first_budget / first_span
+        R::of(params.mu_s()) * R::abs(first_dir_z) * first_budget / first_span
     } else {
-        0.0
+        R::ZERO
     };
     let normal = final_normal_impulse(approach, restitution, table_rate, grip_normal);
 
@@ -122,11 +126,7 @@ pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
     } else {
         (slip.stick_y, slip.stick_z, Regime::Gripping)
     };
-    let pressing_span = if normal < grip_normal {
-        normal
-    } else {
-        grip_normal
-    };
+    let pressing_span = R::min(normal, grip_normal);
     let table = table_rate * pressing_span;
     let (table_x, table_y) = table_friction_components(table, pressing_span, j_y, j_z);
     let impulses = SpecificImpulses {
@@ -139,47 +139,55 @@ pub(crate) fn collide(params: &Params, impact: &Impact) -> Outcome {
     Outcome::from_impulses(params, impact, impulses, regime)
 }
 
+/// Initial tangential slip `(v_y0, v_z0)` (seed eq. (11)) evaluated in `R`.
+pub(crate) fn initial_slip<R: Real>(params: &Params, impact: &Impact) -> (R, R) {
+    let radius = R::of(params.radius());
+    let u = impact.velocity();
+    let w = impact.spin();
+    (-R::of(u.y) - radius * R::of(w.z), radius * R::of(w.y))
+}
+
 /// Split the table friction `table` (m/s) on the pressed object ball along its
 /// table-contact slip `c = V + Ω × (−R ẑ)` (first-principles Coulomb direction; the seed's
 /// eq. (7) takes `c ∥ x̂`). At the end of the pressing span every impulse has grown
 /// roughly in proportion, so the final `c` gives the mean direction:
 /// `c_x = p − X − (j_z + X)/ν` (the spin `Ω_y` adds `−R Ω_y`), `c_y = j_y`. Returns the
 /// `−x` magnitude and the `y` component of the table impulse.
-fn table_friction_components(table: f32, span: f32, j_y: f32, j_z: f32) -> (f32, f32) {
-    if table == 0.0 {
-        return (0.0, 0.0);
+fn table_friction_components<R: Real>(table: R, span: R, j_y: R, j_z: R) -> (R, R) {
+    if table == R::ZERO {
+        return (R::ZERO, R::ZERO);
     }
-    let slip_x = span - table - (j_z + table) / NU;
+    let slip_x = span - table - (j_z + table) / nu::<R>();
     let slip_y = j_y;
-    let length = math::sqrt(slip_x * slip_x + slip_y * slip_y);
-    if length == 0.0 {
-        return (table, 0.0);
+    let length = R::sqrt(slip_x * slip_x + slip_y * slip_y);
+    if length == R::ZERO {
+        return (table, R::ZERO);
     }
     (table * slip_x / length, -table * slip_y / length)
 }
 
 /// The initial tangential slip and the quantities derived from it.
-struct TangentialSlip {
+struct TangentialSlip<R> {
     /// Slip direction scaled so its largest component is ±1 (`v₀ / scale`).
-    unit_y: f32,
-    unit_z: f32,
-    k_z: f32,
+    unit_y: R,
+    unit_z: R,
+    k_z: R,
     /// `|v₀| / scale`.
-    unit_norm: f32,
+    unit_norm: R,
     /// Stick impulse `j_stick = −K⁻¹ v₀` (m/s).
-    stick_y: f32,
-    stick_z: f32,
+    stick_y: R,
+    stick_z: R,
     /// `s* = |j_stick|` (m/s): friction budget that stops the slip.
-    stick_budget: f32,
+    stick_budget: R,
 }
 
-impl TangentialSlip {
-    fn new(slip_y: f32, slip_z: f32, scale: f32, k_z: f32) -> Self {
+impl<R: Real> TangentialSlip<R> {
+    fn new(slip_y: R, slip_z: R, scale: R, k_z: R) -> Self {
         let unit_y = slip_y / scale;
         let unit_z = slip_z / scale;
-        let unit_norm = math::sqrt(unit_y * unit_y + unit_z * unit_z);
-        let (unit_stick_y, unit_stick_z) = (-unit_y / K_Y, -unit_z / k_z);
-        let unit_stick = math::sqrt(unit_stick_y * unit_stick_y + unit_stick_z * unit_stick_z);
+        let unit_norm = R::sqrt(unit_y * unit_y + unit_z * unit_z);
+        let (unit_stick_y, unit_stick_z) = (-unit_y / k_y::<R>(), -unit_z / k_z);
+        let unit_stick = R::sqrt(unit_stick_y * unit_stick_y + unit_stick_z * unit_stick_z);
         Self {
             unit_y,
             unit_z,
@@ -193,29 +201,30 @@ impl TangentialSlip {
 
     /// Unit direction of the friction impulse on the object ball after a friction
     /// budget `budget = μ p` (m/s), `budget ≤ s*` (clamped).
-    fn friction_direction(&self, budget: f32) -> (f32, f32) {
+    fn friction_direction(&self, budget: R) -> (R, R) {
+        let half = R::of(0.5);
         // f = S / s* in [0, 1], written so that no 0/0 or ∞/∞ can occur.
         let fraction = if budget >= self.stick_budget {
-            1.0
+            R::ONE
         } else {
             budget / self.stick_budget
         };
         // α / |v₀| in units where |v₀| = unit_norm · scale; σ = s*/|v₀|.
         let sigma = self.stick_budget_per_norm();
-        let alpha_per_norm =
-            0.5 * fraction * sigma + (1.0 / (K_Y + self.k_z) - 0.5 * sigma) * fraction * fraction;
+        let alpha_per_norm = half * fraction * sigma
+            + (R::ONE / (k_y::<R>() + self.k_z) - half * sigma) * fraction * fraction;
         // v_m / scale = u − (α/|v₀|) K u.
-        let mid_y = self.unit_y * (1.0 - alpha_per_norm * K_Y);
-        let mid_z = self.unit_z * (1.0 - alpha_per_norm * self.k_z);
-        let inv = 1.0 / math::sqrt(mid_y * mid_y + mid_z * mid_z);
+        let mid_y = self.unit_y * (R::ONE - alpha_per_norm * k_y::<R>());
+        let mid_z = self.unit_z * (R::ONE - alpha_per_norm * self.k_z);
+        let inv = R::ONE / R::sqrt(mid_y * mid_y + mid_z * mid_z);
         (-mid_y * inv, -mid_z * inv)
     }
 
     /// `s* / |v₀|`, a pure number in `[1/k_y, 1/k_z]`.
-    fn stick_budget_per_norm(&self) -> f32 {
-        let sy = self.unit_y / K_Y;
+    fn stick_budget_per_norm(&self) -> R {
+        let sy = self.unit_y / k_y::<R>();
         let sz = self.unit_z / self.k_z;
-        math::sqrt(sy * sy + sz * sz) / self.unit_norm
+        R::sqrt(sy * sy + sz * sz) / self.unit_norm
     }
 }
 
@@ -224,10 +233,11 @@ impl TangentialSlip {
 ///
 /// `v_x(p) = −a + (2 − ρ) p` for `p ≤ p*`, slope 2 after; compression ends at
 /// `v_x = 0`; restitution ends when the work done since then is `e² |W_c|`.
-fn final_normal_impulse(a: f32, e: f32, rho: f32, grip: f32) -> f32 {
-    let slope = 2.0 - rho;
+fn final_normal_impulse<R: Real>(a: R, e: R, rho: R, grip: R) -> R {
+    let (half, two) = (R::of(0.5), R::of(2.0));
+    let slope = two - rho;
     let compression_end = a / slope;
-    let sliding_end = (1.0 + e) * compression_end;
+    let sliding_end = (R::ONE + e) * compression_end;
     if sliding_end <= grip {
         return sliding_end;
     }
@@ -235,28 +245,26 @@ fn final_normal_impulse(a: f32, e: f32, rho: f32, grip: f32) -> f32 {
         // Grip during restitution: work `slope (p*−p_c)²/2` done on the sliding piece,
         // the rest `e² a p_c / 2 − that` on the slope-2 piece: v* q + q² = rest.
         let v_star = slope * (grip - compression_end);
-        let rest = 0.5 * e * e * a * compression_end - 0.5 * v_star * (grip - compression_end);
-        let rest = if rest > 0.0 { rest } else { 0.0 };
-        let denominator = v_star + math::sqrt(v_star * v_star + 4.0 * rest);
-        let extra = if denominator > 0.0 {
-            2.0 * rest / denominator
+        let rest = R::max(
+            half * e * e * a * compression_end - half * v_star * (grip - compression_end),
+            R::ZERO,
+        );
+        let denominator = v_star + R::sqrt(v_star * v_star + R::of(4.0) * rest);
+        let extra = if denominator > R::ZERO {
+            two * rest / denominator
         } else {
-            0.0
+            R::ZERO
         };
         grip + extra
     } else {
         // Grip during compression: slope 2 from p*, compression ends at p_c, then
         // (p − p_c)² = e² |W_c|.
         let v_star = -a + slope * grip;
-        let work_at_grip = -a * grip + 0.5 * slope * grip * grip;
-        let compression_end = grip - 0.5 * v_star;
-        let compression_work = work_at_grip - 0.25 * v_star * v_star;
-        let depth = if compression_work < 0.0 {
-            -compression_work
-        } else {
-            0.0
-        };
-        compression_end + e * math::sqrt(depth)
+        let work_at_grip = -a * grip + half * slope * grip * grip;
+        let compression_end = grip - half * v_star;
+        let compression_work = work_at_grip - R::of(0.25) * v_star * v_star;
+        let depth = R::max(-compression_work, R::ZERO);
+        compression_end + e * R::sqrt(depth)
     }
 }
 
@@ -266,12 +274,12 @@ mod tests {
 
     #[test]
     fn normal_impulse_without_table_is_one_plus_e_half() {
-        assert!((final_normal_impulse(2.0, 0.9, 0.0, f32::INFINITY) - 1.9).abs() < 1e-6);
+        assert!((final_normal_impulse(2.0f32, 0.9, 0.0, f32::INFINITY) - 1.9).abs() < 1e-6);
     }
 
     #[test]
     fn normal_impulse_is_continuous_across_grip_cases() {
-        let (a, e, rho) = (1.0, 0.9, 0.04);
+        let (a, e, rho) = (1.0f32, 0.9f32, 0.04f32);
         let p_c = a / (2.0 - rho);
         for grip in [p_c, (1.0 + e) * p_c] {
             let below = final_normal_impulse(a, e, rho, grip * (1.0 - 1e-6));
@@ -283,13 +291,13 @@ mod tests {
     #[test]
     fn early_grip_tends_to_the_frictionless_impulse() {
         // Table friction that stops immediately leaves the frictionless (1+e) a / 2.
-        let p = final_normal_impulse(1.0, 0.95, 0.04, 0.0);
+        let p = final_normal_impulse(1.0f32, 0.95, 0.04, 0.0);
         assert!((p - 0.975).abs() < 1e-6);
     }
 
     #[test]
     fn direction_meets_stick_impulse_at_the_boundary() {
-        let slip = TangentialSlip::new(-0.7, 0.5, 0.7, 5.0);
+        let slip = TangentialSlip::new(-0.7f32, 0.5, 0.7, 5.0);
         let (dy, dz) = slip.friction_direction(slip.stick_budget);
         let (sy, sz) = (
             slip.stick_y / slip.stick_budget,

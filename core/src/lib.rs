@@ -34,15 +34,19 @@ pub mod math;
 mod model;
 mod outcome;
 mod params;
+mod real;
 pub mod strike;
 mod vector;
 
 pub use error::{Error, Field, Result};
 pub use friction::FrictionLaw;
 pub use impact::Impact;
-pub use model::{collide, Model};
+#[cfg(feature = "libm")]
+pub use model::collide_f64;
+pub use model::{collide, collide_in, Model};
 pub use outcome::{BallState, Impulses, Outcome, Regime};
 pub use params::Params;
+pub use real::Real;
 pub use vector::Vec3;
 
 /// Moment-of-inertia factor of a uniform solid sphere, `I = ν M R²` (seed eq. (10)).

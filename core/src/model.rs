@@ -4,6 +4,7 @@ use crate::error::{Error, Result};
 use crate::impact::Impact;
 use crate::outcome::Outcome;
 use crate::params::Params;
+use crate::real::Real;
 
 /// Which collision model to evaluate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,16 +41,29 @@ impl Model {
 }
 
 /// Predict the outcome of the cue ball described by `impact` hitting a resting object
-/// ball, with `params`, using `model`.
+/// ball, with `params`, using `model`, evaluated in `f32`.
 ///
 /// Inputs are validated by their constructors, so the only error is
 /// [`Error::NumericalFailure`], a guard that turns any non-finite result into an
 /// error instead of a NaN (never observed on the test grids).
 pub fn collide(params: &Params, impact: &Impact, model: Model) -> Result<Outcome> {
+    collide_in::<f32>(params, impact, model)
+}
+
+/// As [`collide`], evaluated in `f64` (software double precision on the Cortex-M4F;
+/// for measuring what precision buys). Needs the `libm` backend.
+#[cfg(feature = "libm")]
+pub fn collide_f64(params: &Params, impact: &Impact, model: Model) -> Result<Outcome> {
+    collide_in::<f64>(params, impact, model)
+}
+
+/// As [`collide`], evaluated in the precision `R` ([`Real`]: `f32`, or `f64` with
+/// `libm`). Inputs and outputs are `f32` whatever `R`.
+pub fn collide_in<R: Real>(params: &Params, impact: &Impact, model: Model) -> Result<Outcome> {
     let outcome = match model {
-        Model::Ideal => crate::ideal::collide(params, impact),
-        Model::Kim => crate::kim::collide(params, impact),
-        Model::KimGrip => crate::kim_grip::collide(params, impact),
+        Model::Ideal => crate::ideal::collide::<R>(params, impact),
+        Model::Kim => crate::kim::collide::<R>(params, impact),
+        Model::KimGrip => crate::kim_grip::collide::<R>(params, impact),
     };
     if outcome.is_finite() {
         Ok(outcome)

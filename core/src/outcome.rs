@@ -4,8 +4,8 @@
 use crate::impact::Impact;
 use crate::math;
 use crate::params::Params;
+use crate::real::Real;
 use crate::vector::Vec3;
-use crate::NU;
 
 /// Linear and angular velocity of one ball just after the impact.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -55,30 +55,31 @@ pub struct Impulses {
     pub table_friction: f32,
 }
 
-/// Impulses per unit mass (m/s) handed from a model to [`Outcome::from_impulses`].
+/// Impulses per unit mass (m/s) handed from a model to [`Outcome::from_impulses`],
+/// in the model's evaluation precision `R`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct SpecificImpulses {
+pub(crate) struct SpecificImpulses<R> {
     /// Ball–ball normal impulse on the object ball, along `+x`.
-    pub normal: f32,
+    pub normal: R,
     /// Ball–ball friction impulse on the object ball, `y` component.
-    pub friction_y: f32,
+    pub friction_y: R,
     /// Ball–ball friction impulse on the object ball, `z` component.
-    pub friction_z: f32,
+    pub friction_z: R,
     /// Table friction on the object ball along `−x`.
-    pub table: f32,
+    pub table: R,
     /// Table friction on the object ball, `y` component.
-    pub table_y: f32,
+    pub table_y: R,
 }
 
-impl SpecificImpulses {
+impl<R: Real> SpecificImpulses<R> {
     /// Only a normal impulse.
-    pub const fn normal_only(normal: f32) -> Self {
+    pub fn normal_only(normal: R) -> Self {
         Self {
             normal,
-            friction_y: 0.0,
-            friction_z: 0.0,
-            table: 0.0,
-            table_y: 0.0,
+            friction_y: R::ZERO,
+            friction_z: R::ZERO,
+            table: R::ZERO,
+            table_y: R::ZERO,
         }
     }
 }
@@ -105,10 +106,10 @@ impl Outcome {
     /// ball and `−R x̂` from the object ball; the table acts at `−R ẑ` and only pushes
     /// up, so whichever ball the vertical friction presses down keeps `v_z = 0` and
     /// the other leaves the table with `v_z = |j_z|`.
-    pub(crate) fn from_impulses(
+    pub(crate) fn from_impulses<R: Real>(
         params: &Params,
         impact: &Impact,
-        j: SpecificImpulses,
+        j: SpecificImpulses<R>,
         regime: Regime,
     ) -> Self {
         let SpecificImpulses {
@@ -118,23 +119,33 @@ impl Outcome {
             table,
             table_y,
         } = j;
-        let radius = params.radius();
+        let zero = R::ZERO;
+        let radius = R::of(params.radius());
         let mass = params.mass();
         // Δω per unit specific impulse at the contact: R / (ν M R²) · M = 1 / (ν R).
-        let spin_per_impulse = 1.0 / (NU * radius);
+        let spin_per_impulse = R::of(5.0) / (R::of(2.0) * radius);
         let u = impact.velocity();
         let w = impact.spin();
-        let cue_velocity = Vec3::new(u.x - normal, u.y - j_y, if j_z < 0.0 { -j_z } else { 0.0 });
-        let object_velocity = Vec3::new(
-            normal - table,
-            j_y + table_y,
-            if j_z > 0.0 { j_z } else { 0.0 },
-        );
+        let vec = |x: R, y: R, z: R| Vec3::new(x.to_f32(), y.to_f32(), z.to_f32());
+        let lifted = |v: R| if v > zero { v } else { zero };
+        let cue_velocity = vec(R::of(u.x) - normal, R::of(u.y) - j_y, lifted(-j_z));
+        let object_velocity = vec(normal - table, j_y + table_y, lifted(j_z));
         // Cue ball: r × (−J) with r = R x̂ gives R (0, j_z, −j_y).
-        let cue_spin = w + Vec3::new(0.0, j_z, -j_y) * spin_per_impulse;
+        let cue_spin = vec(
+            R::of(w.x),
+            R::of(w.y) + j_z * spin_per_impulse,
+            R::of(w.z) - j_y * spin_per_impulse,
+        );
         // Object ball: (−R x̂) × J gives the same; table friction at −R ẑ:
         // (−R ẑ) × (−X, T_y, 0) = R (T_y, X, 0).
-        let object_spin = Vec3::new(table_y, j_z + table, -j_y) * spin_per_impulse;
+        let object_spin = vec(
+            table_y * spin_per_impulse,
+            (j_z + table) * spin_per_impulse,
+            -j_y * spin_per_impulse,
+        );
+        let normal = normal.to_f32();
+        let (j_y, j_z) = (j_y.to_f32(), j_z.to_f32());
+        let (table, table_y) = (table.to_f32(), table_y.to_f32());
         Self {
             cue_ball: BallState {
                 velocity: cue_velocity,

@@ -1,0 +1,111 @@
+//! Evaluation precision: the models are generic over [`Real`], implemented for `f32`
+//! (the Cortex-M4F's hardware precision, the default) and, with the `libm` backend,
+//! `f64` (software on the M4F; for measuring what precision costs and buys).
+//!
+//! Inputs (`Params`, `Impact`) and the `Outcome` stay `f32`; only the evaluation in
+//! between changes precision. Every function goes through the math shim.
+
+use core::ops::{Add, Div, Mul, Neg, Sub};
+
+/// A floating-point type the models can be evaluated in.
+pub trait Real:
+    Copy
+    + PartialOrd
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// 0.
+    const ZERO: Self;
+    /// 1.
+    const ONE: Self;
+    /// Widen (or keep) an `f32`.
+    fn of(x: f32) -> Self;
+    /// Round to `f32`.
+    fn to_f32(self) -> f32;
+    /// Square root.
+    fn sqrt(x: Self) -> Self;
+    /// Absolute value.
+    fn abs(x: Self) -> Self;
+    /// `e^x`.
+    fn exp(x: Self) -> Self;
+    /// Natural logarithm.
+    fn ln(x: Self) -> Self;
+    /// Larger of two (non-NaN) values, by comparison.
+    fn max(a: Self, b: Self) -> Self {
+        if a > b {
+            a
+        } else {
+            b
+        }
+    }
+    /// Smaller of two (non-NaN) values, by comparison.
+    fn min(a: Self, b: Self) -> Self {
+        if a < b {
+            a
+        } else {
+            b
+        }
+    }
+}
+
+impl Real for f32 {
+    const ZERO: Self = 0.0;
+    const ONE: Self = 1.0;
+    #[inline(always)]
+    fn of(x: f32) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn to_f32(self) -> f32 {
+        self
+    }
+    #[inline(always)]
+    fn sqrt(x: Self) -> Self {
+        crate::math::sqrt(x)
+    }
+    #[inline(always)]
+    fn abs(x: Self) -> Self {
+        crate::math::abs(x)
+    }
+    #[inline(always)]
+    fn exp(x: Self) -> Self {
+        crate::math::exp(x)
+    }
+    #[inline(always)]
+    fn ln(x: Self) -> Self {
+        crate::math::ln(x)
+    }
+}
+
+#[cfg(feature = "libm")]
+impl Real for f64 {
+    const ZERO: Self = 0.0;
+    const ONE: Self = 1.0;
+    #[inline(always)]
+    fn of(x: f32) -> Self {
+        x as f64
+    }
+    #[inline(always)]
+    fn to_f32(self) -> f32 {
+        self as f32
+    }
+    #[inline(always)]
+    fn sqrt(x: Self) -> Self {
+        libm::sqrt(x)
+    }
+    #[inline(always)]
+    fn abs(x: Self) -> Self {
+        f64::from_bits(x.to_bits() & 0x7fff_ffff_ffff_ffff)
+    }
+    #[inline(always)]
+    fn exp(x: Self) -> Self {
+        libm::exp(x)
+    }
+    #[inline(always)]
+    fn ln(x: Self) -> Self {
+        libm::log(x)
+    }
+}
