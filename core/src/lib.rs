@@ -25,6 +25,7 @@
 #![deny(missing_docs)]
 
 mod error;
+mod exact;
 mod friction;
 mod ideal;
 mod impact;

@@ -19,11 +19,14 @@ pub enum Model {
     /// `Kim` plus a gripping branch (erratum E6) and a second-order slip-direction
     /// correction; continuous across the slide/grip boundary. The model to use.
     KimGrip,
+    /// The full rigid-body impact integrated in fixed memory (`exact` module): the
+    /// reference solver's physics at a fixed step count. Slowest, most accurate.
+    Exact,
 }
 
 impl Model {
     /// Every model, cheapest first.
-    pub const ALL: [Model; 3] = [Model::Ideal, Model::Kim, Model::KimGrip];
+    pub const ALL: [Model; 4] = [Model::Ideal, Model::Kim, Model::KimGrip, Model::Exact];
 
     /// Lower-case, hyphenated name (`ideal`, `kim`, `kim-grip`).
     pub const fn name(self) -> &'static str {
@@ -31,6 +34,7 @@ impl Model {
             Model::Ideal => "ideal",
             Model::Kim => "kim",
             Model::KimGrip => "kim-grip",
+            Model::Exact => "exact",
         }
     }
 
@@ -64,6 +68,7 @@ pub fn collide_in<R: Real>(params: &Params, impact: &Impact, model: Model) -> Re
         Model::Ideal => crate::ideal::collide::<R>(params, impact),
         Model::Kim => crate::kim::collide::<R>(params, impact),
         Model::KimGrip => crate::kim_grip::collide::<R>(params, impact),
+        Model::Exact => crate::exact::collide::<R>(params, impact),
     };
     if outcome.is_finite() {
         Ok(outcome)
