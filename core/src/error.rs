@@ -46,6 +46,8 @@ pub enum Field {
     TipRestitution,
     /// Cue-tip offset `b = (side, height)` from the ball centre (m, TP A.30).
     TipOffset,
+    /// Error tolerance of the `Auto` model.
+    Tolerance,
 }
 
 impl Field {
@@ -66,6 +68,7 @@ impl Field {
             Field::TableFriction => "mu_s",
             Field::Radius => "radius",
             Field::Mass => "mass",
+            Field::Tolerance => "tolerance",
             Field::CueSpeed => "cue_speed",
             Field::CueMass => "cue_mass",
             Field::TipRestitution => "tip_restitution",
@@ -88,6 +91,7 @@ impl Field {
             Field::TableFriction => "[0, 1]",
             Field::Radius => "[0.001, 1] m",
             Field::Mass => "[0.001, 100] kg",
+            Field::Tolerance => "(0, 1]",
             Field::CueSpeed => "(0, 20] m/s",
             Field::CueMass => "[0.1, 2] kg",
             Field::TipRestitution => "[0, 1]",

@@ -25,6 +25,7 @@
 #![deny(missing_docs)]
 
 mod error;
+mod estimate;
 mod exact;
 mod friction;
 mod ideal;
@@ -40,6 +41,7 @@ pub mod strike;
 mod vector;
 
 pub use error::{Error, Field, Result};
+pub use estimate::{error_estimate, select as select_model};
 pub use friction::FrictionLaw;
 pub use impact::Impact;
 #[cfg(feature = "libm")]

@@ -1,13 +1,13 @@
 //! Model selection and the single entry point [`collide`].
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Field, Result};
 use crate::impact::Impact;
 use crate::outcome::Outcome;
 use crate::params::Params;
 use crate::real::Real;
 
 /// Which collision model to evaluate.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Model {
     /// Frictionless, perfectly elastic (`μ = 0`, `e* = 1` whatever `Params` say):
@@ -22,6 +22,13 @@ pub enum Model {
     /// The full rigid-body impact integrated in fixed memory (`exact` module): the
     /// reference solver's physics at a fixed step count. Slowest, most accurate.
     Exact,
+    /// The cheapest of the tiers above whose a-priori error estimate
+    /// ([`crate::error_estimate`]) is at most `tolerance`, in `max(|Δv|, R|Δω|) / U`
+    /// (e.g. 1e-3 for 0.1 % of the cue-ball speed); `Exact` if none is.
+    Auto {
+        /// Accepted relative error, in `(0, 1]`.
+        tolerance: f32,
+    },
 }
 
 impl Model {
@@ -35,11 +42,15 @@ impl Model {
             Model::Kim => "kim",
             Model::KimGrip => "kim-grip",
             Model::Exact => "exact",
+            Model::Auto { .. } => "auto",
         }
     }
 
-    /// Parse a name as printed by [`Model::name`].
+    /// Parse a name as printed by [`Model::name`]; `auto` gets a tolerance of 1e-3.
     pub fn from_name(name: &str) -> Option<Self> {
+        if name == "auto" {
+            return Some(Model::Auto { tolerance: 1e-3 });
+        }
         Self::ALL.into_iter().find(|m| m.name() == name)
     }
 }
@@ -69,6 +80,11 @@ pub fn collide_in<R: Real>(params: &Params, impact: &Impact, model: Model) -> Re
         Model::Kim => crate::kim::collide::<R>(params, impact),
         Model::KimGrip => crate::kim_grip::collide::<R>(params, impact),
         Model::Exact => crate::exact::collide::<R>(params, impact),
+        Model::Auto { tolerance } => {
+            crate::error::check(Field::Tolerance, tolerance, 0.0, 1.0, true)?;
+            let (tier, _) = crate::estimate::select(params, impact, tolerance);
+            return collide_in::<R>(params, impact, tier);
+        }
     };
     if outcome.is_finite() {
         Ok(outcome)

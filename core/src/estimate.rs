@@ -1,0 +1,144 @@
+//! A-priori error estimates of each tier and the `Auto` tier selection.
+//!
+//! The error measure is the foundation issue's: `max(|Δv|, R|Δω|) / U` over both balls
+//! (full 3-vectors), against the first-principles reference. Each estimate is the size
+//! of the leading effect the tier leaves out, computed from the inputs alone (per unit
+//! mass, m/s; `p₀ = (1+e*) U_x / 2`, slip `v₀`, stick budget `s* = |K⁻¹v₀|`, friction
+//! budget `S₀ = μ(|v₀|) p₀`, grip fraction `f = min(S₀/s*, 1)`, friction impulse
+//! `J = min(μ(0) p₀, s*)`, anisotropy `(k_y − k_z)/k_y`, table friction
+//! `X = μ_s |v_z0|/|v₀| J` when the object ball is pressed), times a constant
+//! calibrated on a grid with another seed (`cargo run --release -p cuesight-host
+//! --example estimate_explore`) and checked on the foundation grid
+//! (`host-tests/tests/auto.rs`):
+//!
+//! | tier | leading error left out | estimate |
+//! |---|---|---|
+//! | `Ideal` | restitution loss and all friction | `max((1−e*) U_x/2 + 1.4 J, 2.5·1.4 J) / U` |
+//! | `Kim` | slip-direction turn (∝ f, anisotropy) and grip (`S₀ > s*`) | `2.5 (S₀ f (k_y−k_z)/k_y + max(0, S₀ − s*)) / U` |
+//! | `KimGrip` | second-order direction error, table-friction direction and timing | `0.06 (2.5 J f (k_y−k_z)/k_y + X) / U` |
+//! | `Exact` | step error (24 steps) | `0.002 (2.5 J + X) / U + 2e-6` |
+//!
+//! (`2.5 = 1/ν` turns a friction impulse into `R Δω`; `1.4 = 1 + μ_s` at most.)
+
+use crate::impact::Impact;
+use crate::kim_grip::initial_slip;
+use crate::model::Model;
+use crate::params::Params;
+
+/// Calibrated factors (see module docs).
+const KIM_GRIP_FACTOR: f32 = 0.06;
+const EXACT_FACTOR: f32 = 0.002;
+const EXACT_FLOOR: f32 = 2e-6;
+
+/// Estimated error `max(|Δv|, R|Δω|) / U` of `model` for this scene. `Auto` returns the
+/// estimate of the tier it would pick for a tolerance of 1e-3.
+pub fn error_estimate(params: &Params, impact: &Impact, model: Model) -> f32 {
+    let f = Features::of(params, impact);
+    match model {
+        Model::Ideal => f.ideal(),
+        Model::Kim => f.kim(),
+        Model::KimGrip => f.kim_grip(),
+        Model::Exact => f.exact(),
+        Model::Auto { tolerance } => select(params, impact, tolerance).1,
+    }
+}
+
+/// The cheapest tier whose estimate meets `tolerance` (`Exact` if none does), with its
+/// estimate.
+pub fn select(params: &Params, impact: &Impact, tolerance: f32) -> (Model, f32) {
+    let f = Features::of(params, impact);
+    for (model, estimate) in [
+        (Model::Ideal, f.ideal()),
+        (Model::Kim, f.kim()),
+        (Model::KimGrip, f.kim_grip()),
+    ] {
+        if estimate <= tolerance {
+            return (model, estimate);
+        }
+    }
+    (Model::Exact, f.exact())
+}
+
+struct Features {
+    speed: f32,
+    restitution_loss: f32,
+    impulse: f32,
+    kim_budget: f32,
+    stick_budget: f32,
+    fraction: f32,
+    anisotropy: f32,
+    table: f32,
+}
+
+impl Features {
+    fn of(params: &Params, impact: &Impact) -> Self {
+        let u = impact.velocity();
+        let speed = crate::math::sqrt(u.x * u.x + u.y * u.y);
+        let e = params.restitution();
+        let p0 = 0.5 * (1.0 + e) * u.x;
+        let (v_y, v_z) = initial_slip::<f32>(params, impact);
+        let scale = crate::math::max(crate::math::abs(v_y), crate::math::abs(v_z));
+        let law = params.friction_law();
+        let pressed = v_z > 0.0;
+        let k_z = if pressed {
+            (2.4 - params.mu_s()) / 0.4
+        } else {
+            6.0
+        };
+        let (slip, stick_budget) = if scale > 0.0 {
+            let (y, z) = (v_y / scale, v_z / scale);
+            let norm = crate::math::sqrt(y * y + z * z);
+            let (sy, sz) = (y / 7.0, z / k_z);
+            (norm * scale, crate::math::sqrt(sy * sy + sz * sz) * scale)
+        } else {
+            (0.0, 0.0)
+        };
+        let kim_budget = law.at(slip) * p0;
+        let impulse = crate::math::max(0.0, (law.at(0.0) * p0).min(stick_budget));
+        let fraction = if kim_budget >= stick_budget {
+            1.0
+        } else {
+            kim_budget / stick_budget
+        };
+        let vertical_share = if slip > 0.0 {
+            crate::math::abs(v_z) / slip
+        } else {
+            0.0
+        };
+        Self {
+            speed,
+            restitution_loss: 0.5 * (1.0 - e) * u.x,
+            impulse,
+            kim_budget,
+            stick_budget,
+            fraction,
+            anisotropy: (7.0 - k_z) / 7.0,
+            table: if pressed {
+                params.mu_s() * vertical_share * impulse
+            } else {
+                0.0
+            },
+        }
+    }
+
+    fn ideal(&self) -> f32 {
+        let velocity = self.restitution_loss + 1.4 * self.impulse;
+        let spin = 2.5 * 1.4 * self.impulse;
+        crate::math::max(velocity, spin) / self.speed
+    }
+
+    fn kim(&self) -> f32 {
+        let turn = self.kim_budget * self.fraction * self.anisotropy;
+        let grip = crate::math::max(self.kim_budget - self.stick_budget, 0.0);
+        2.5 * (turn + grip) / self.speed
+    }
+
+    fn kim_grip(&self) -> f32 {
+        KIM_GRIP_FACTOR * (2.5 * self.impulse * self.fraction * self.anisotropy + self.table)
+            / self.speed
+    }
+
+    fn exact(&self) -> f32 {
+        EXACT_FACTOR * (2.5 * self.impulse + self.table) / self.speed + EXACT_FLOOR
+    }
+}

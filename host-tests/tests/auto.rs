@@ -1,0 +1,74 @@
+//! A-priori error estimates and the `Auto` tier (fidelity-ladder issue): on the
+//! 10,000-scene foundation grid each tier's estimate bounds its true error (vs the
+//! reference, `max(|Δv|, R|Δω|)/U`) in ≥ 99 % of scenes, and `Auto` meets its
+//! tolerance in ≥ 99 %. The estimates were calibrated on another seed.
+
+use cuesight::{collide, error_estimate, select_model, Model};
+use cuesight_host::compare::{reference, scene_error};
+use cuesight_host::grid::{scenes, Scene};
+use cuesight_host::reference::ReferenceOutcome;
+
+fn true_error(scene: &Scene, model: Model, reference: &ReferenceOutcome) -> f64 {
+    let out = collide(&scene.params(), &scene.impact(), model).unwrap();
+    let e = scene_error(scene, &out, reference);
+    e.velocity.max(e.spin)
+}
+
+#[test]
+fn estimates_bound_errors_and_auto_meets_tolerance() {
+    let grid: Vec<_> = scenes(2024, 10_000)
+        .into_iter()
+        .map(|s| {
+            let r = reference(&s).unwrap();
+            (s, r)
+        })
+        .collect();
+    let n = grid.len() as f64;
+    for model in Model::ALL {
+        let bounded = grid
+            .iter()
+            .filter(|(s, r)| {
+                true_error(s, model, r) <= error_estimate(&s.params(), &s.impact(), model) as f64
+            })
+            .count() as f64;
+        println!(
+            "{:9} estimate bounds the error in {:.2} % of scenes",
+            model.name(),
+            100.0 * bounded / n
+        );
+        assert!(bounded >= 0.99 * n, "{model:?}: {bounded}");
+    }
+    for tolerance in [1e-2f32, 1e-3, 1e-4, 1e-5] {
+        let mut used = [0usize; 4];
+        let mut met = 0usize;
+        for (s, r) in &grid {
+            let (tier, _) = select_model(&s.params(), &s.impact(), tolerance);
+            used[Model::ALL.iter().position(|m| *m == tier).unwrap()] += 1;
+            let auto = collide(&s.params(), &s.impact(), Model::Auto { tolerance }).unwrap();
+            let e = scene_error(s, &auto, r);
+            if e.velocity.max(e.spin) <= tolerance as f64 {
+                met += 1;
+            }
+        }
+        println!(
+            "Auto {tolerance:e}: meets it in {:.2} % of scenes; tiers used ideal {} kim {} kim-grip {} exact {}",
+            100.0 * met as f64 / n,
+            used[0],
+            used[1],
+            used[2],
+            used[3]
+        );
+        if tolerance >= 1e-4 {
+            assert!(met as f64 >= 0.99 * n, "Auto {tolerance}: {met}");
+        }
+    }
+}
+
+#[test]
+fn auto_rejects_a_bad_tolerance() {
+    let s = scenes(1, 1)[0];
+    for tolerance in [0.0, -1.0, f32::NAN, 2.0] {
+        let e = collide(&s.params(), &s.impact(), Model::Auto { tolerance }).unwrap_err();
+        assert_eq!(e.field(), Some(cuesight::Field::Tolerance));
+    }
+}
