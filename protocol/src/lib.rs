@@ -1,4 +1,64 @@
-//! The cuesight firmware's serial protocol: newline-delimited JSON requests and answers.
+//! The cuesight firmware's serial protocol: newline-delimited JSON requests and answers,
+//! `no_std` and heap-free (serde + serde-json-core, fixed buffers from heapless).
+//!
+//! One request per line, one answer line per request, in order:
+//!
+//! ```text
+//! → {"collide":{"speed":2,"cut":30,"spin":[0,40,0],"mu":0.06}}
+//! ← {"collide":{"model":"kim-grip","regime":"sliding","input":{...},"cue":{...},...}}
+//! → {"collide":{"speed":-1,"cut":0}}
+//! ← {"error":{"kind":"out_of_range","field":"speed","message":"speed = -1 is outside (0, 100] m/s"}}
+//! ```
+//!
+//! The schema, with examples, is in `docs/protocol.md`. The same types serve both ends:
+//! the firmware decodes with [`decode`] and answers with [`Session::serve`]; the host
+//! serializes [`Request`]s and reads [`Answer`]s with serde_json, and the `cuesight`
+//! CLI prints a [`CollideAnswer`] for `collide --json`.
+//!
+//! ```
+//! use cuesight_protocol::{AnswerLine, Identity, Session};
+//! let mut session = Session::new(Identity { firmware: "doc 0", board: "none" });
+//! let mut out = AnswerLine::new();
+//! session.serve_line(br#"{"collide":{"speed":2,"cut":30}}"#, &mut out);
+//! assert!(out.starts_with(br#"{"collide":{"model":"kim-grip","regime":"sliding""#));
+//! session.serve_line(br#"{"collide":{"speed":2,"cut":30,"spin":[0,0]}}"#, &mut out);
+//! assert!(out.starts_with(br#"{"error":{"kind":"wrong_type","field":"spin""#));
+//! ```
 #![no_std]
 #![deny(unsafe_code)]
 #![deny(missing_docs)]
+
+pub mod answer;
+mod decode;
+mod display;
+pub mod json;
+mod line;
+mod names;
+mod problem;
+pub mod request;
+mod session;
+
+pub use answer::{Answer, CollideAnswer, ErrorAnswer, InputEcho};
+pub use decode::decode;
+pub use display::Summary;
+pub use line::{Event, LineReader};
+pub use names::{ModelName, RegimeName};
+pub use problem::{ErrorKind, Message, Name, NotARequest, Problem, MESSAGE_LEN, NAME_LEN};
+pub use request::{Collide, Defaults, Overrides, Request, Spin, Stroke};
+pub use session::{AnswerLine, Control, Identity, Served, Session};
+
+/// Protocol version, reported by `version`. Bumped on any incompatible change of a
+/// request or answer.
+pub const PROTOCOL_VERSION: u32 = 1;
+
+/// Longest request line, in bytes without the `\n` (a `\r` before it counts). Sized
+/// for a `stroke` of [`MAX_SAMPLES`] typical samples; `collide` needs about 200.
+pub const MAX_LINE: usize = 10 * 1024;
+
+/// Longest answer line, `\n` included. The largest answer (`collide` with every
+/// number at its longest, 14 characters) is 782 bytes; the tests check it stays under
+/// 1,000.
+pub const MAX_ANSWER: usize = 1024;
+
+/// Most accelerometer samples in one `stroke` request (120 ms at 3.3 kHz).
+pub const MAX_SAMPLES: usize = 400;

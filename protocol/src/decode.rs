@@ -1,0 +1,413 @@
+//! Decoding a request line: strict JSON syntax first ([`crate::json`]), then the
+//! schema through serde and serde-json-core, with every problem named.
+//!
+//! The request types implement no `Deserialize`: serde's derived code reports unknown
+//! fields, missing fields and wrong types through `de::Error::custom`, and
+//! serde-json-core without `custom-error-messages` drops that text (with the feature it
+//! formats it into a 64-byte buffer with an `unwrap`, which panics on serde's longer
+//! "unknown field ..., expected one of ..." messages). The hand-written visitors below
+//! (`deny_unknown_fields` behaviour included) record *what* went wrong in a [`Diag`]
+//! that travels with the `DeserializeSeed`s, and the innermost field being read, so a
+//! bare serde-json-core error can still be pinned to a field.
+
+use core::fmt;
+
+use heapless::Vec;
+use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visitor};
+
+use crate::names::ModelName;
+use crate::problem::{Name, NotARequest, Problem};
+use crate::request::{Collide, Overrides, Request, Spin, Stroke};
+use crate::{json, MAX_SAMPLES};
+
+/// Decode one request line (without its newline).
+pub fn decode(line: &[u8]) -> Result<Request, Problem> {
+    json::check(line).map_err(Problem::Syntax)?;
+    let mut diag = Diag::default();
+    let mut de = serde_json_core::de::Deserializer::new(line, None);
+    let result = RequestSeed { diag: &mut diag }
+        .deserialize(&mut de)
+        .and_then(|request| de.end().map(|_| request));
+    result.map_err(|_| diag.into_problem())
+}
+
+/// What the visitors learnt before an error.
+#[derive(Default)]
+struct Diag {
+    /// The field whose value was being read, and what it should have been.
+    at: Option<(&'static str, &'static str)>,
+    /// A problem a visitor found itself (takes precedence).
+    problem: Option<Problem>,
+}
+
+impl Diag {
+    /// Record `problem` and return an error to unwind the deserializer with.
+    fn fail<E: de::Error>(&mut self, problem: Problem) -> E {
+        self.problem = Some(problem);
+        E::custom("")
+    }
+
+    fn into_problem(self) -> Problem {
+        match (self.problem, self.at) {
+            (Some(problem), _) => problem,
+            // The JSON is valid (checked first): the value had the wrong shape.
+            (None, Some((field, expected))) => Problem::WrongType { field, expected },
+            (None, None) => Problem::NotARequest(NotARequest::NotAnObject),
+        }
+    }
+
+    /// Read the value of `field` into `slot` (refusing duplicates), with `expected`
+    /// named if it has the wrong type.
+    fn value<'de, A, T>(
+        &mut self,
+        map: &mut A,
+        field: &'static str,
+        expected: &'static str,
+        slot: &mut Option<T>,
+    ) -> Result<(), A::Error>
+    where
+        A: MapAccess<'de>,
+        T: de::Deserialize<'de>,
+    {
+        if slot.is_some() {
+            return Err(self.fail(Problem::DuplicateField(field)));
+        }
+        self.at = Some((field, expected));
+        let value = map.next_value::<T>()?;
+        self.at = None;
+        *slot = Some(value);
+        Ok(())
+    }
+
+    /// Read the request body under `field` (an object of `T`'s fields).
+    fn body<'de, A, T>(
+        &mut self,
+        map: &mut A,
+        field: &'static str,
+        expected: &'static str,
+    ) -> Result<T, A::Error>
+    where
+        A: MapAccess<'de>,
+        T: Body,
+    {
+        self.at = Some((field, expected));
+        let body = map.next_value_seed(BodySeed::<T>::new(self))?;
+        self.at = None;
+        Ok(body)
+    }
+}
+
+const NUMBER: &str = "a number";
+const SPIN: &str = "[wx, wy, wz], three numbers (rad/s)";
+const BOOL: &str = "true or false";
+const MODEL: &str = "a model name (a string)";
+const OBJECT: &str = "an object of the request's fields";
+const EMPTY: &str = "an empty object {}";
+const SAMPLES: &str = "an array of [ax, ay, az] samples, integers in -32768..=32767";
+const TIP: &str = "[side, height], two numbers (m)";
+
+struct RequestSeed<'d> {
+    diag: &'d mut Diag,
+}
+
+impl<'de> DeserializeSeed<'de> for RequestSeed<'_> {
+    type Value = Request;
+
+    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<Request, D::Error> {
+        deserializer.deserialize_map(self)
+    }
+}
+
+impl<'de> Visitor<'de> for RequestSeed<'_> {
+    type Value = Request;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("a request object")
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Request, A::Error> {
+        let diag = self.diag;
+        let Some(tag) = map.next_key::<&str>()? else {
+            return Err(diag.fail(Problem::NotARequest(NotARequest::Empty)));
+        };
+        let request = match tag {
+            "collide" => Request::Collide(diag.body(&mut map, "collide", OBJECT)?),
+            "params" => Request::Params(diag.body(&mut map, "params", OBJECT)?),
+            "stroke" => Request::Stroke(diag.body(&mut map, "stroke", OBJECT)?),
+            "version" => {
+                diag.body::<_, ()>(&mut map, "version", EMPTY)?;
+                Request::Version
+            }
+            "shutdown" => {
+                diag.body::<_, ()>(&mut map, "shutdown", EMPTY)?;
+                Request::Shutdown
+            }
+            other => return Err(diag.fail(Problem::UnknownRequest(Name::of(other)))),
+        };
+        if map.next_key::<&str>()?.is_some() {
+            return Err(diag.fail(Problem::NotARequest(NotARequest::SeveralKeys)));
+        }
+        Ok(request)
+    }
+}
+
+/// A request body: an object whose fields `T` knows how to read.
+trait Body: Sized {
+    /// The request's name, for messages.
+    const NAME: &'static str;
+    /// Every field name, for messages.
+    const EXPECTED: &'static str;
+    /// Read the fields from `map`.
+    fn read<'de, A: MapAccess<'de>>(map: A, diag: &mut Diag) -> Result<Self, A::Error>;
+}
+
+struct BodySeed<'d, T> {
+    diag: &'d mut Diag,
+    body: core::marker::PhantomData<T>,
+}
+
+impl<'d, T> BodySeed<'d, T> {
+    fn new(diag: &'d mut Diag) -> Self {
+        Self {
+            diag,
+            body: core::marker::PhantomData,
+        }
+    }
+}
+
+impl<'de, T: Body> DeserializeSeed<'de> for BodySeed<'_, T> {
+    type Value = T;
+
+    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<T, D::Error> {
+        deserializer.deserialize_map(self)
+    }
+}
+
+impl<'de, T: Body> Visitor<'de> for BodySeed<'_, T> {
+    type Value = T;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(T::NAME)
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<T, A::Error> {
+        T::read(map, self.diag)
+    }
+}
+
+fn unknown<E: de::Error>(diag: &mut Diag, request: &'static str, field: &str) -> E {
+    diag.fail(Problem::UnknownField {
+        request,
+        field: Name::of(field),
+        expected: match request {
+            "collide" => Collide::EXPECTED,
+            "params" => Overrides::EXPECTED,
+            "stroke" => Stroke::EXPECTED,
+            _ => "no fields",
+        },
+    })
+}
+
+/// Reads one of the [`Overrides`] fields; `false` if `key` is not one.
+fn read_override<'de, A: MapAccess<'de>>(
+    map: &mut A,
+    diag: &mut Diag,
+    key: &str,
+    with: &mut Overrides,
+    model: &mut Option<&'de str>,
+) -> Result<bool, A::Error> {
+    let (slot, name) = match key {
+        "mu" => (&mut with.mu, "mu"),
+        "mu_b" => (&mut with.mu_b, "mu_b"),
+        "mu_c" => (&mut with.mu_c, "mu_c"),
+        "restitution" => (&mut with.restitution, "restitution"),
+        "mu_s" => (&mut with.mu_s, "mu_s"),
+        "radius" => (&mut with.radius, "radius"),
+        "mass" => (&mut with.mass, "mass"),
+        "model" => {
+            diag.value(map, "model", MODEL, model)?;
+            return Ok(true);
+        }
+        _ => return Ok(false),
+    };
+    diag.value(map, name, NUMBER, slot)?;
+    Ok(true)
+}
+
+fn parse_model<E: de::Error>(diag: &mut Diag, name: Option<&str>) -> Result<Option<ModelName>, E> {
+    match name {
+        None => Ok(None),
+        Some(name) => match ModelName::from_name(name) {
+            Some(model) => Ok(Some(model)),
+            None => Err(diag.fail(Problem::UnknownModel(Name::of(name)))),
+        },
+    }
+}
+
+impl Body for Overrides {
+    const NAME: &'static str = "params";
+    const EXPECTED: &'static str = "mu, mu_b, mu_c, restitution, mu_s, radius, mass, model";
+
+    fn read<'de, A: MapAccess<'de>>(mut map: A, diag: &mut Diag) -> Result<Self, A::Error> {
+        let mut with = Overrides::default();
+        let mut model = None;
+        while let Some(key) = map.next_key::<&str>()? {
+            if !read_override(&mut map, diag, key, &mut with, &mut model)? {
+                return Err(unknown(diag, Self::NAME, key));
+            }
+        }
+        with.model = parse_model(diag, model)?;
+        Ok(with)
+    }
+}
+
+impl Body for Collide {
+    const NAME: &'static str = "collide";
+    const EXPECTED: &'static str =
+        "speed, cut, spin, roll, mu, mu_b, mu_c, restitution, mu_s, radius, mass, model";
+
+    fn read<'de, A: MapAccess<'de>>(mut map: A, diag: &mut Diag) -> Result<Self, A::Error> {
+        let (mut speed, mut cut, mut spin, mut roll) = (None, None, None, None);
+        let mut with = Overrides::default();
+        let mut model = None;
+        while let Some(key) = map.next_key::<&str>()? {
+            match key {
+                "speed" => diag.value(&mut map, "speed", NUMBER, &mut speed)?,
+                "cut" => diag.value(&mut map, "cut", NUMBER, &mut cut)?,
+                "spin" => diag.value::<_, [f32; 3]>(&mut map, "spin", SPIN, &mut spin)?,
+                "roll" => diag.value(&mut map, "roll", BOOL, &mut roll)?,
+                _ => {
+                    if !read_override(&mut map, diag, key, &mut with, &mut model)? {
+                        return Err(unknown(diag, Self::NAME, key));
+                    }
+                }
+            }
+        }
+        with.model = parse_model(diag, model)?;
+        let spin = match (spin, roll) {
+            (Some(_), Some(true)) => {
+                return Err(diag.fail(Problem::Conflict {
+                    field: "roll",
+                    with: "spin",
+                }))
+            }
+            (_, Some(true)) => Spin::Roll,
+            (spin, _) => Spin::Given(spin.unwrap_or([0.0; 3])),
+        };
+        let Some(speed) = speed else {
+            return Err(diag.fail(Problem::MissingField("speed")));
+        };
+        let Some(cut) = cut else {
+            return Err(diag.fail(Problem::MissingField("cut")));
+        };
+        Ok(Collide {
+            speed,
+            cut,
+            spin,
+            with,
+        })
+    }
+}
+
+impl Body for Stroke {
+    const NAME: &'static str = "stroke";
+    const EXPECTED: &'static str =
+        "rate_hz, full_scale_g, samples, tip_offset, cue_mass, tip_restitution";
+
+    fn read<'de, A: MapAccess<'de>>(mut map: A, diag: &mut Diag) -> Result<Self, A::Error> {
+        let (mut rate_hz, mut full_scale_g, mut samples) = (None, None, None);
+        let (mut tip_offset, mut cue_mass, mut tip_restitution) = (None, None, None);
+        while let Some(key) = map.next_key::<&str>()? {
+            match key {
+                "rate_hz" => diag.value(&mut map, "rate_hz", NUMBER, &mut rate_hz)?,
+                "full_scale_g" => {
+                    diag.value(&mut map, "full_scale_g", NUMBER, &mut full_scale_g)?
+                }
+                "samples" => {
+                    if samples.is_some() {
+                        return Err(diag.fail(Problem::DuplicateField("samples")));
+                    }
+                    diag.at = Some(("samples", SAMPLES));
+                    samples = Some(map.next_value_seed(SamplesSeed { diag: &mut *diag })?);
+                    diag.at = None;
+                }
+                "tip_offset" => {
+                    diag.value::<_, [f32; 2]>(&mut map, "tip_offset", TIP, &mut tip_offset)?
+                }
+                "cue_mass" => diag.value(&mut map, "cue_mass", NUMBER, &mut cue_mass)?,
+                "tip_restitution" => {
+                    diag.value(&mut map, "tip_restitution", NUMBER, &mut tip_restitution)?
+                }
+                _ => return Err(unknown(diag, Self::NAME, key)),
+            }
+        }
+        let Some(rate_hz) = rate_hz else {
+            return Err(diag.fail(Problem::MissingField("rate_hz")));
+        };
+        let Some(full_scale_g) = full_scale_g else {
+            return Err(diag.fail(Problem::MissingField("full_scale_g")));
+        };
+        let Some(samples) = samples else {
+            return Err(diag.fail(Problem::MissingField("samples")));
+        };
+        Ok(Stroke {
+            rate_hz,
+            full_scale_g,
+            samples,
+            tip_offset,
+            cue_mass,
+            tip_restitution,
+        })
+    }
+}
+
+/// `version` and `shutdown` take no fields.
+impl Body for () {
+    const NAME: &'static str = "an empty request body";
+    const EXPECTED: &'static str = "no fields";
+
+    fn read<'de, A: MapAccess<'de>>(mut map: A, diag: &mut Diag) -> Result<Self, A::Error> {
+        match map.next_key::<&str>()? {
+            None => Ok(()),
+            Some(key) => Err(diag.fail(Problem::UnknownField {
+                request: "this request",
+                field: Name::of(key),
+                expected: Self::EXPECTED,
+            })),
+        }
+    }
+}
+
+/// The `samples` array, into a fixed-capacity vector.
+struct SamplesSeed<'d> {
+    diag: &'d mut Diag,
+}
+
+impl<'de> DeserializeSeed<'de> for SamplesSeed<'_> {
+    type Value = Vec<[i16; 3], MAX_SAMPLES>;
+
+    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<Self::Value, D::Error> {
+        deserializer.deserialize_seq(self)
+    }
+}
+
+impl<'de> Visitor<'de> for SamplesSeed<'_> {
+    type Value = Vec<[i16; 3], MAX_SAMPLES>;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(SAMPLES)
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
+        let mut samples = Vec::new();
+        while let Some(sample) = seq.next_element::<[i16; 3]>()? {
+            if samples.push(sample).is_err() {
+                return Err(self.diag.fail(Problem::TooMany {
+                    field: "samples",
+                    limit: MAX_SAMPLES,
+                }));
+            }
+        }
+        Ok(samples)
+    }
+}

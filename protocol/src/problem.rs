@@ -1,0 +1,334 @@
+//! Everything that can be wrong with a request line, and the `{"error":{...}}` answer
+//! that names it.
+
+use core::fmt::{self, Write};
+
+use serde::{Deserialize, Serialize};
+
+use crate::answer::ErrorAnswer;
+use crate::json::Syntax;
+use crate::names::ModelNames;
+use crate::request::Request;
+
+/// Longest name (field, request, board) kept in an answer, in bytes.
+pub const NAME_LEN: usize = 32;
+/// Longest error message, in bytes.
+pub const MESSAGE_LEN: usize = 200;
+
+/// A short name: a field, a request, a board. Longer text is cut at a character
+/// boundary.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct Name(pub heapless::String<NAME_LEN>);
+
+impl Name {
+    /// `text`, cut to [`NAME_LEN`] bytes.
+    pub fn of(text: &str) -> Self {
+        let mut name = heapless::String::new();
+        push_truncated(&mut name, text);
+        Self(name)
+    }
+
+    /// The text.
+    pub fn as_str(&self) -> &str {
+        self.0.as_str()
+    }
+}
+
+impl fmt::Display for Name {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// An error message, cut to [`MESSAGE_LEN`] bytes.
+pub type Message = heapless::String<MESSAGE_LEN>;
+
+/// Appends as much of `text` as fits, never splitting a character.
+fn push_truncated<const N: usize>(out: &mut heapless::String<N>, text: &str) {
+    for c in text.chars() {
+        if out.push(c).is_err() {
+            break;
+        }
+    }
+}
+
+/// `fmt::Write` into a fixed string that drops what does not fit instead of failing.
+struct Truncating<'a, const N: usize>(&'a mut heapless::String<N>);
+
+impl<const N: usize> Write for Truncating<'_, N> {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        push_truncated(self.0, s);
+        Ok(())
+    }
+}
+
+/// The class of an error, as on the wire (`"kind"`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[serde(rename_all = "snake_case")]
+pub enum ErrorKind {
+    /// The line is not JSON (or is cut short).
+    MalformedJson,
+    /// The line is longer than [`crate::MAX_LINE`].
+    LineTooLong,
+    /// Valid JSON, but not an object with exactly one request key.
+    NotARequest,
+    /// The request name is not one of [`Request::NAMES`].
+    UnknownRequest,
+    /// A field the request does not have.
+    UnknownField,
+    /// A field given twice.
+    DuplicateField,
+    /// A required field is missing.
+    MissingField,
+    /// A field's value has the wrong JSON type or shape.
+    WrongType,
+    /// A field's value is of the right type but not an accepted one (unknown model).
+    InvalidValue,
+    /// Two fields that exclude each other (`spin` and `roll`).
+    Conflict,
+    /// A number that is NaN or infinite (`null`, or too large for `f32`, e.g. `1e39`).
+    NotFinite,
+    /// A number outside its accepted range (the message gives the range).
+    OutOfRange,
+    /// The core produced a non-finite result (a guard, never observed).
+    NumericalFailure,
+    /// A valid request this device cannot answer.
+    Unsupported,
+    /// The answer did not fit the answer buffer (a bug: sizes are checked by tests).
+    Internal,
+}
+
+impl ErrorKind {
+    /// The wire name (`malformed_json`, `out_of_range`, ...).
+    pub const fn name(self) -> &'static str {
+        match self {
+            ErrorKind::MalformedJson => "malformed_json",
+            ErrorKind::LineTooLong => "line_too_long",
+            ErrorKind::NotARequest => "not_a_request",
+            ErrorKind::UnknownRequest => "unknown_request",
+            ErrorKind::UnknownField => "unknown_field",
+            ErrorKind::DuplicateField => "duplicate_field",
+            ErrorKind::MissingField => "missing_field",
+            ErrorKind::WrongType => "wrong_type",
+            ErrorKind::InvalidValue => "invalid_value",
+            ErrorKind::Conflict => "conflict",
+            ErrorKind::NotFinite => "not_finite",
+            ErrorKind::OutOfRange => "out_of_range",
+            ErrorKind::NumericalFailure => "numerical_failure",
+            ErrorKind::Unsupported => "unsupported",
+            ErrorKind::Internal => "internal",
+        }
+    }
+}
+
+/// Why valid JSON is not a request.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NotARequest {
+    /// Not a JSON object.
+    NotAnObject,
+    /// `{}`.
+    Empty,
+    /// More than one key.
+    SeveralKeys,
+}
+
+/// A problem with one line.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Problem {
+    /// Not JSON.
+    Syntax(Syntax),
+    /// Longer than the line buffer.
+    LineTooLong {
+        /// Bytes received before the newline.
+        length: usize,
+        /// [`crate::MAX_LINE`].
+        limit: usize,
+    },
+    /// Valid JSON that is not a request object.
+    NotARequest(NotARequest),
+    /// An unknown request name.
+    UnknownRequest(Name),
+    /// An unknown field.
+    UnknownField {
+        /// The request.
+        request: &'static str,
+        /// The field as given.
+        field: Name,
+        /// The fields the request has.
+        expected: &'static str,
+    },
+    /// A field given twice.
+    DuplicateField(&'static str),
+    /// A required field missing.
+    MissingField(&'static str),
+    /// A value of the wrong type.
+    WrongType {
+        /// The field.
+        field: &'static str,
+        /// What it should be.
+        expected: &'static str,
+    },
+    /// A value of the right type that is not accepted.
+    InvalidValue {
+        /// The field.
+        field: &'static str,
+        /// What it should be.
+        expected: &'static str,
+    },
+    /// Two fields that exclude each other.
+    Conflict {
+        /// The field that was refused.
+        field: &'static str,
+        /// The field it conflicts with.
+        with: &'static str,
+    },
+    /// A model name that is not one of [`crate::ModelName::names`].
+    UnknownModel(Name),
+    /// More elements than the fixed buffer holds.
+    TooMany {
+        /// The field.
+        field: &'static str,
+        /// The capacity.
+        limit: usize,
+    },
+    /// A value the core refused, or its numerical guard.
+    Value(cuesight::Error),
+    /// A request this device cannot answer.
+    Unsupported {
+        /// The field or request concerned.
+        field: &'static str,
+        /// Why.
+        reason: &'static str,
+    },
+}
+
+impl From<cuesight::Error> for Problem {
+    fn from(error: cuesight::Error) -> Self {
+        Problem::Value(error)
+    }
+}
+
+impl Problem {
+    /// The wire class.
+    pub const fn kind(&self) -> ErrorKind {
+        match self {
+            Problem::Syntax(_) => ErrorKind::MalformedJson,
+            Problem::LineTooLong { .. } => ErrorKind::LineTooLong,
+            Problem::NotARequest(_) => ErrorKind::NotARequest,
+            Problem::UnknownRequest(_) => ErrorKind::UnknownRequest,
+            Problem::UnknownField { .. } => ErrorKind::UnknownField,
+            Problem::DuplicateField(_) => ErrorKind::DuplicateField,
+            Problem::MissingField(_) => ErrorKind::MissingField,
+            Problem::WrongType { .. } => ErrorKind::WrongType,
+            Problem::InvalidValue { .. } | Problem::UnknownModel(_) => ErrorKind::InvalidValue,
+            Problem::Conflict { .. } => ErrorKind::Conflict,
+            Problem::TooMany { .. } => ErrorKind::OutOfRange,
+            Problem::Value(cuesight::Error::NotFinite { .. }) => ErrorKind::NotFinite,
+            Problem::Value(cuesight::Error::OutOfRange { .. }) => ErrorKind::OutOfRange,
+            Problem::Value(cuesight::Error::NumericalFailure) => ErrorKind::NumericalFailure,
+            Problem::Unsupported { .. } => ErrorKind::Unsupported,
+        }
+    }
+
+    /// The field (or request name) the problem concerns, if any.
+    pub fn field(&self) -> Option<Name> {
+        match self {
+            Problem::Syntax(_) | Problem::LineTooLong { .. } | Problem::NotARequest(_) => None,
+            Problem::UnknownRequest(name) | Problem::UnknownField { field: name, .. } => {
+                Some(name.clone())
+            }
+            Problem::DuplicateField(field)
+            | Problem::MissingField(field)
+            | Problem::WrongType { field, .. }
+            | Problem::InvalidValue { field, .. }
+            | Problem::Conflict { field, .. }
+            | Problem::TooMany { field, .. }
+            | Problem::Unsupported { field, .. } => Some(Name::of(field)),
+            Problem::UnknownModel(_) => Some(Name::of("model")),
+            Problem::Value(error) => error.field().map(|f| Name::of(f.name())),
+        }
+    }
+
+    /// The error answer for this problem.
+    pub fn to_answer(&self) -> ErrorAnswer {
+        let mut message = Message::new();
+        // Truncating never fails.
+        let _ = write!(Truncating(&mut message), "{self}");
+        ErrorAnswer {
+            kind: self.kind(),
+            field: self.field(),
+            message,
+        }
+    }
+}
+
+/// `a, b, c` from a list of names.
+struct List<'a>(&'a [&'a str]);
+
+impl fmt::Display for List<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, name) in self.0.iter().enumerate() {
+            if i > 0 {
+                f.write_str(", ")?;
+            }
+            f.write_str(name)?;
+        }
+        Ok(())
+    }
+}
+
+impl fmt::Display for Problem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Problem::Syntax(syntax) => write!(f, "malformed JSON: {syntax}"),
+            Problem::LineTooLong { length, limit } => write!(
+                f,
+                "line too long: {length} bytes before the newline, the limit is {limit}"
+            ),
+            Problem::NotARequest(why) => {
+                f.write_str("not a request: ")?;
+                f.write_str(match why {
+                    NotARequest::NotAnObject => "expected a JSON object",
+                    NotARequest::Empty => "the object is empty",
+                    NotARequest::SeveralKeys => "one request per line, found several keys",
+                })?;
+                write!(
+                    f,
+                    " (one of {} as its only key, e.g. {{\"version\":{{}}}})",
+                    List(&Request::NAMES)
+                )
+            }
+            Problem::UnknownRequest(name) => write!(
+                f,
+                "unknown request \"{name}\", expected one of {}",
+                List(&Request::NAMES)
+            ),
+            Problem::UnknownField {
+                request,
+                field,
+                expected,
+            } => write!(
+                f,
+                "unknown field \"{field}\" in {request}, expected {expected}"
+            ),
+            Problem::DuplicateField(field) => write!(f, "field \"{field}\" given twice"),
+            Problem::MissingField(field) => write!(f, "missing field \"{field}\""),
+            Problem::WrongType { field, expected } | Problem::InvalidValue { field, expected } => {
+                write!(f, "{field}: expected {expected}")
+            }
+            Problem::UnknownModel(name) => {
+                write!(f, "model: unknown model \"{name}\", expected {ModelNames}")
+            }
+            Problem::Conflict { field, with } => {
+                write!(f, "{field} and {with} cannot both be given")
+            }
+            Problem::TooMany { field, limit } => {
+                write!(f, "{field}: more than {limit}, the buffer's capacity")
+            }
+            Problem::Value(error) => fmt::Display::fmt(error, f),
+            Problem::Unsupported { field, reason } => write!(f, "{field}: {reason}"),
+        }
+    }
+}

@@ -1,0 +1,224 @@
+//! The device side of the protocol: session state and [`Session::serve`], which turns
+//! one line into one answer line. Pure (no I/O), so the firmware's serial loop stays a
+//! few lines and everything here is tested on the host.
+
+use cuesight::collide;
+use heapless::Vec;
+
+use crate::answer::{
+    Answer, CollideAnswer, ErrorAnswer, ParamsAnswer, ShutdownAnswer, VersionAnswer,
+};
+use crate::decode::decode;
+use crate::line::Event;
+use crate::names::ModelName;
+use crate::problem::{ErrorKind, Message, Name, Problem};
+use crate::request::{Collide, Defaults, Overrides, Request, Stroke};
+use crate::{MAX_ANSWER, MAX_LINE, MAX_SAMPLES, PROTOCOL_VERSION};
+
+/// An answer line: JSON and its `\n`.
+pub type AnswerLine = Vec<u8, MAX_ANSWER>;
+
+/// Who is answering, for `version`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Identity {
+    /// Firmware name and version, e.g. `cuesight-firmware 0.1.0`.
+    pub firmware: &'static str,
+    /// Board name, e.g. `qemu-mps2-an386`.
+    pub board: &'static str,
+}
+
+/// What the caller does after sending an answer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Control {
+    /// Keep reading lines.
+    Continue,
+    /// The session is over (`shutdown`): flush the answer and stop.
+    Shutdown,
+}
+
+/// Outcome of serving one line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Served {
+    /// The request's name, or `None` when the line was answered with an error.
+    pub request: Option<&'static str>,
+    /// The error class, when the answer is an error.
+    pub error: Option<ErrorKind>,
+    /// Whether to go on.
+    pub control: Control,
+}
+
+/// One session: the defaults set by `params` and the counters `shutdown` reports.
+#[derive(Clone, Debug)]
+pub struct Session {
+    defaults: Defaults,
+    identity: Identity,
+    requests: u32,
+    errors: u32,
+}
+
+impl Session {
+    /// A new session with [`Defaults::POOL`].
+    pub const fn new(identity: Identity) -> Self {
+        Self {
+            defaults: Defaults::POOL,
+            identity,
+            requests: 0,
+            errors: 0,
+        }
+    }
+
+    /// The defaults in force.
+    pub const fn defaults(&self) -> &Defaults {
+        &self.defaults
+    }
+
+    /// Lines answered so far (errors included).
+    pub const fn requests(&self) -> u32 {
+        self.requests
+    }
+
+    /// Lines answered with an error so far.
+    pub const fn errors(&self) -> u32 {
+        self.errors
+    }
+
+    /// Answers one [`Event`] of a [`crate::LineReader`] into `out` (JSON and `\n`).
+    ///
+    /// Returns `None`, with `out` empty, for a blank line (only spaces or tabs), which
+    /// gets no answer: an empty line on a terminal is not a request.
+    pub fn serve(&mut self, event: Event<'_>, out: &mut AnswerLine) -> Option<Served> {
+        out.clear();
+        if let Event::Line(line) = event {
+            if line.iter().all(|b| matches!(b, b' ' | b'\t')) {
+                return None;
+            }
+        }
+        self.requests = self.requests.saturating_add(1);
+        let result = match event {
+            Event::Line(line) => decode(line).and_then(|request| self.answer(&request)),
+            Event::Overlong { length } => Err(Problem::LineTooLong {
+                length,
+                limit: MAX_LINE,
+            }),
+        };
+        let served = match result {
+            Ok((answer, name, control)) => {
+                write_answer(&answer, out);
+                Served {
+                    request: Some(name),
+                    error: None,
+                    control,
+                }
+            }
+            Err(problem) => {
+                self.errors = self.errors.saturating_add(1);
+                let answer = Answer::Error(problem.to_answer());
+                write_answer(&answer, out);
+                Served {
+                    request: None,
+                    error: Some(problem.kind()),
+                    control: Control::Continue,
+                }
+            }
+        };
+        Some(served)
+    }
+
+    /// Answers one line (without its newline): [`Session::serve`] for a line that fit.
+    pub fn serve_line(&mut self, line: &[u8], out: &mut AnswerLine) -> Option<Served> {
+        if line.len() > MAX_LINE {
+            return self.serve(Event::Overlong { length: line.len() }, out);
+        }
+        self.serve(Event::Line(line), out)
+    }
+
+    fn answer(&mut self, request: &Request) -> Result<(Answer, &'static str, Control), Problem> {
+        let name = request.name();
+        let answer = match request {
+            Request::Collide(collide) => Answer::Collide(self.collide(collide)?),
+            Request::Params(overrides) => Answer::Params(self.set_params(overrides)?),
+            Request::Stroke(stroke) => return Err(self.stroke(stroke)),
+            Request::Version => Answer::Version(self.version()),
+            Request::Shutdown => {
+                let answer = Answer::Shutdown(ShutdownAnswer {
+                    requests: self.requests,
+                    errors: self.errors,
+                });
+                return Ok((answer, name, Control::Shutdown));
+            }
+        };
+        Ok((answer, name, Control::Continue))
+    }
+
+    fn collide(&self, request: &Collide) -> Result<CollideAnswer, Problem> {
+        let prepared = request.prepare(&self.defaults)?;
+        let model = core_model(prepared.model)?;
+        let outcome = collide(&prepared.params, &prepared.impact, model)?;
+        Ok(CollideAnswer::new(prepared.model, prepared.input, &outcome))
+    }
+
+    fn set_params(&mut self, overrides: &Overrides) -> Result<ParamsAnswer, Problem> {
+        let defaults = overrides.apply(&self.defaults)?;
+        core_model(defaults.model)?;
+        self.defaults = defaults;
+        Ok(ParamsAnswer::from(&self.defaults))
+    }
+
+    fn stroke(&self, _stroke: &Stroke) -> Problem {
+        Problem::Unsupported {
+            field: "stroke",
+            reason: "stroke estimator not available",
+        }
+    }
+
+    fn version(&self) -> VersionAnswer {
+        VersionAnswer {
+            protocol: PROTOCOL_VERSION,
+            firmware: Name::of(self.identity.firmware),
+            board: Name::of(self.identity.board),
+            max_line: MAX_LINE as u32,
+            max_samples: MAX_SAMPLES as u32,
+        }
+    }
+}
+
+/// The core model for `name`; `reference` is host-only.
+fn core_model(name: ModelName) -> Result<cuesight::Model, Problem> {
+    name.core().ok_or(Problem::Unsupported {
+        field: "model",
+        reason: "reference runs on the host only (cuesight collide --model reference)",
+    })
+}
+
+/// Serializes `answer` and its newline into `out`; if it does not fit (never, by the
+/// size tests), an `internal` error line instead.
+fn write_answer(answer: &Answer, out: &mut AnswerLine) {
+    out.clear();
+    // Cannot fail: resizing up to the capacity.
+    let _ = out.resize_default(MAX_ANSWER);
+    let written = serde_json_core::to_slice(answer, out)
+        .ok()
+        .filter(|&n| n < MAX_ANSWER);
+    match written {
+        Some(n) => {
+            out.truncate(n);
+            let _ = out.push(b'\n'); // n < capacity
+        }
+        None => {
+            out.clear();
+            let mut message = Message::new();
+            let _ = message.push_str("the answer did not fit the answer buffer");
+            let fallback = Answer::Error(ErrorAnswer {
+                kind: ErrorKind::Internal,
+                field: None,
+                message,
+            });
+            let _ = out.resize_default(MAX_ANSWER);
+            let n = serde_json_core::to_slice(&fallback, out).unwrap_or(0);
+            out.truncate(n);
+            let _ = out.push(b'\n');
+        }
+    }
+}
