@@ -8,50 +8,25 @@
 
 use core::fmt;
 
-use cuesight::{Impact, Model, Outcome, Params};
+use cuesight::{Impact, Outcome, Params};
+use cuesight_protocol::{Collide, Defaults, ModelName};
 
-use crate::report::{InputReport, Report};
+use crate::report::Report;
 
 /// Exit code for an invalid physical value or a solver failure.
 pub const EXIT_INVALID: u8 = 1;
 /// Exit code for a usage error (what clap rejects).
 pub const EXIT_USAGE: u8 = 2;
 
-/// Which solver answers a `collide` request.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum ModelChoice {
-    /// One of the core's closed-form models.
-    Core(Model),
-    /// The host's f64 first-principles reference solver.
-    Reference,
-}
-
-impl ModelChoice {
-    /// Every accepted name, in the order shown to users.
-    pub const NAMES: [&'static str; 4] = ["ideal", "kim", "kim-grip", "reference"];
-
-    /// Name as accepted by `--model`.
-    pub const fn name(self) -> &'static str {
-        match self {
-            ModelChoice::Core(model) => model.name(),
-            ModelChoice::Reference => "reference",
-        }
-    }
-}
-
-/// Parse a `--model` value (`ideal`, `kim`, `kim-grip` or `reference`).
-pub fn parse_model(name: &str) -> Result<ModelChoice, String> {
-    if name == "reference" {
-        return Ok(ModelChoice::Reference);
-    }
-    Model::from_name(name)
-        .map(ModelChoice::Core)
-        .ok_or_else(|| {
-            format!(
-                "unknown model, expected one of {}",
-                ModelChoice::NAMES.join(", ")
-            )
-        })
+/// Parse a `--model` value: a core model (`ideal`, `kim`, `kim-grip`, ...) or
+/// `reference`, by the protocol's [`ModelName`].
+pub fn parse_model(name: &str) -> Result<ModelName, String> {
+    ModelName::from_name(name).ok_or_else(|| {
+        format!(
+            "unknown model, expected one of {}",
+            ModelName::names().collect::<Vec<_>>().join(", ")
+        )
+    })
 }
 
 /// Parse a `--spin` value `WX,WY,WZ` (rad/s, collision frame). Only the syntax is
@@ -71,56 +46,6 @@ pub fn parse_spin(text: &str) -> Result<[f32; 3], String> {
             .map_err(|_| format!("spin.{axis} '{part}' is not a number"))?;
     }
     Ok(spin)
-}
-
-/// Cue-ball spin before impact.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum SpinInput {
-    /// Given angular velocity `[ω_x, ω_y, ω_z]` (rad/s); zero is a stun shot.
-    Given([f32; 3]),
-    /// Natural roll for the cue-ball velocity ([`Impact::rolling`]).
-    Roll,
-}
-
-/// A `collide` request, as parsed from the command line.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CollideRequest {
-    /// Cue-ball speed `U_i` (m/s).
-    pub speed: f32,
-    /// Cut angle `φ` (degrees).
-    pub cut_deg: f32,
-    /// Cue-ball spin.
-    pub spin: SpinInput,
-    /// Ball–ball friction μ.
-    pub mu: f32,
-    /// Energetic restitution e*.
-    pub restitution: f32,
-    /// Object-ball/table friction μ_s.
-    pub mu_s: f32,
-    /// Ball radius R (m).
-    pub radius: f32,
-    /// Ball mass M (kg).
-    pub mass: f32,
-    /// Solver to use.
-    pub model: ModelChoice,
-}
-
-impl Default for CollideRequest {
-    /// A 1 m/s head-on stun shot with the pool parameters and `kim-grip`.
-    fn default() -> Self {
-        let p = Params::POOL;
-        Self {
-            speed: 1.0,
-            cut_deg: 0.0,
-            spin: SpinInput::Given([0.0; 3]),
-            mu: p.mu(),
-            restitution: p.restitution(),
-            mu_s: p.mu_s(),
-            radius: p.radius(),
-            mass: p.mass(),
-            model: ModelChoice::Core(Model::KimGrip),
-        }
-    }
 }
 
 /// Why a well-formed request produced no prediction.
@@ -156,33 +81,16 @@ impl From<cuesight::Error> for CliError {
     }
 }
 
-/// Validate the request through the core's constructors, run the chosen solver and
-/// report the result.
-pub fn collide(request: &CollideRequest) -> Result<Report, CliError> {
-    let params = Params::new(
-        request.mu,
-        request.restitution,
-        request.mu_s,
-        request.radius,
-        request.mass,
-    )?;
-    let (impact, roll) = match request.spin {
-        SpinInput::Given(spin) => (
-            Impact::from_cut_degrees(request.speed, request.cut_deg, spin)?,
-            false,
-        ),
-        SpinInput::Roll => {
-            // Validate speed and cut first so errors name them, then spin up.
-            let v = Impact::from_cut_degrees(request.speed, request.cut_deg, [0.0; 3])?.velocity();
-            (Impact::rolling([v.x, v.y], params.radius())?, true)
-        }
+/// Validate the request through the core's constructors (the protocol's
+/// [`Collide::prepare`], as the firmware does, from the pool defaults and `kim-grip`),
+/// run the chosen solver and report the result.
+pub fn collide(request: &Collide) -> Result<Report, CliError> {
+    let prepared = request.prepare(&Defaults::POOL)?;
+    let outcome = match prepared.model.core() {
+        Some(model) => cuesight::collide(&prepared.params, &prepared.impact, model)?,
+        None => reference_collide(&prepared.params, &prepared.impact)?,
     };
-    let outcome = match request.model {
-        ModelChoice::Core(model) => cuesight::collide(&params, &impact, model)?,
-        ModelChoice::Reference => reference_collide(&params, &impact)?,
-    };
-    let input = InputReport::new(request.speed, request.cut_deg, roll, &params, &impact);
-    Ok(Report::new(request.model.name(), input, &outcome))
+    Ok(Report::new(prepared.model, prepared.input, &outcome))
 }
 
 /// Run the reference solver, turning a panic into an error instead of a trace.
@@ -235,6 +143,7 @@ pub fn usage_error_message(error: &clap::Error) -> String {
 mod tests {
     use super::*;
     use cuesight::Field;
+    use cuesight_protocol::{Overrides, Spin};
 
     #[test]
     fn spin_parses_negative_and_spaced_components() {
@@ -252,58 +161,76 @@ mod tests {
 
     #[test]
     fn model_names_round_trip() {
-        for name in ModelChoice::NAMES {
+        for name in ModelName::names() {
             assert_eq!(parse_model(name).unwrap().name(), name);
         }
-        assert!(parse_model("kimgrip").is_err());
+        assert_eq!(parse_model("reference"), Ok(ModelName::Reference));
+        assert!(parse_model("kimgrip").unwrap_err().contains("kim-grip"));
     }
 
     #[test]
     fn invalid_values_name_their_field() {
-        let base = CollideRequest::default();
+        let base = Collide::new(1.0, 0.0);
+        let with = |overrides: Overrides| Collide {
+            with: overrides,
+            ..base
+        };
         let cases = [
-            (CollideRequest { mu: -0.1, ..base }, Field::Friction),
             (
-                CollideRequest {
-                    restitution: 1.5,
-                    ..base
-                },
+                with(Overrides {
+                    mu: Some(-0.1),
+                    ..Overrides::default()
+                }),
+                Field::Friction,
+            ),
+            (
+                with(Overrides {
+                    mu_b: Some(2.0),
+                    ..Overrides::default()
+                }),
+                Field::FrictionAmplitude,
+            ),
+            (
+                with(Overrides {
+                    restitution: Some(1.5),
+                    ..Overrides::default()
+                }),
                 Field::Restitution,
             ),
             (
-                CollideRequest {
-                    mu_s: f32::NAN,
-                    ..base
-                },
+                with(Overrides {
+                    mu_s: Some(f32::NAN),
+                    ..Overrides::default()
+                }),
                 Field::TableFriction,
             ),
             (
-                CollideRequest {
-                    radius: 0.0,
-                    ..base
-                },
+                with(Overrides {
+                    radius: Some(0.0),
+                    ..Overrides::default()
+                }),
                 Field::Radius,
             ),
-            (CollideRequest { mass: 1e6, ..base }, Field::Mass),
-            (CollideRequest { speed: 0.0, ..base }, Field::Speed),
             (
-                CollideRequest {
-                    cut_deg: 90.0,
+                with(Overrides {
+                    mass: Some(1e6),
+                    ..Overrides::default()
+                }),
+                Field::Mass,
+            ),
+            (Collide { speed: 0.0, ..base }, Field::Speed),
+            (Collide { cut: 90.0, ..base }, Field::CutAngle),
+            (
+                Collide {
+                    cut: -90.0,
+                    spin: Spin::Roll,
                     ..base
                 },
                 Field::CutAngle,
             ),
             (
-                CollideRequest {
-                    cut_deg: -90.0,
-                    spin: SpinInput::Roll,
-                    ..base
-                },
-                Field::CutAngle,
-            ),
-            (
-                CollideRequest {
-                    spin: SpinInput::Given([0.0, f32::INFINITY, 0.0]),
+                Collide {
+                    spin: Spin::Given([0.0, f32::INFINITY, 0.0]),
                     ..base
                 },
                 Field::SpinY,

@@ -73,9 +73,22 @@ fn json_has_every_key() {
     assert_eq!(input["speed"], 2.0);
     assert_eq!(input["cut_deg"], 30.0);
     assert_eq!(vec3(&input["spin"]), [0.0; 3]);
-    for key in ["mu", "restitution", "mu_s", "radius", "mass"] {
+    for key in [
+        "mu",
+        "mu_b",
+        "mu_c",
+        "restitution",
+        "mu_s",
+        "radius",
+        "mass",
+    ] {
         assert!(input[key].is_number(), "input.{key}");
     }
+    // Constant friction unless --mu-b/--mu-c say otherwise.
+    assert_eq!(
+        (input["mu_b"].as_f64(), input["mu_c"].as_f64()),
+        (Some(0.0), Some(0.0))
+    );
     // A stun cut to the left throws the object ball forward (towards +y).
     assert!(v["throw_deg"].as_f64().unwrap() > 0.0);
 }
@@ -119,6 +132,27 @@ fn options_reach_the_model() {
     let ideal = json(&["--speed", "2", "--cut", "30", "--model", "ideal"]);
     assert_eq!(ideal["model"], "ideal");
     assert_eq!(ideal["regime"], "frictionless");
+}
+
+#[test]
+fn speed_dependent_friction_is_echoed() {
+    let v = json(&[
+        "--speed", "2", "--cut", "30", "--mu", "0.00995", "--mu-b", "0.108", "--mu-c", "1.088",
+    ]);
+    let input = &v["input"];
+    for (key, value) in [("mu", 0.00995), ("mu_b", 0.108), ("mu_c", 1.088)] {
+        assert!(
+            (input[key].as_f64().unwrap() - value).abs() < 1e-7,
+            "input.{key}"
+        );
+    }
+    let constant = json(&["--speed", "2", "--cut", "30", "--mu", "0.00995"]);
+    assert_ne!(
+        v["throw_deg"], constant["throw_deg"],
+        "the law reaches the model"
+    );
+    let line = rejected(&["--speed", "2", "--cut", "30", "--mu-b", "1.5"], 1);
+    assert!(line.starts_with("error: mu_b "), "{line}");
 }
 
 #[test]

@@ -6,7 +6,9 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 use cuesight::Params;
-use cuesight_host::cli::{self, CollideRequest, ModelChoice, SpinInput};
+use cuesight_host::cli;
+use cuesight_host::report;
+use cuesight_protocol::{Collide, ModelName, Overrides, Spin};
 
 /// Predict what happens when a spinning cue ball hits a resting object ball.
 #[derive(Parser)]
@@ -41,9 +43,16 @@ struct CollideArgs {
     /// Natural roll for the given velocity instead of --spin.
     #[arg(long)]
     roll: bool,
-    /// Ball–ball friction coefficient μ.
+    /// Ball–ball friction coefficient μ (with --mu-b/--mu-c: the high-speed limit a).
     #[arg(long, default_value_t = Params::POOL.mu(), allow_negative_numbers = true)]
     mu: f32,
+    /// Speed-dependent friction μ(v) = mu + B·exp(−C·v), v the slip speed (TP A.14):
+    /// the amplitude B [default: 0, constant μ].
+    #[arg(long, value_name = "B", allow_negative_numbers = true)]
+    mu_b: Option<f32>,
+    /// The decay rate C (s/m) of the speed-dependent friction [default: 0].
+    #[arg(long, value_name = "C", allow_negative_numbers = true)]
+    mu_c: Option<f32>,
     /// Energetic coefficient of restitution e*.
     #[arg(long, default_value_t = Params::POOL.restitution(), allow_negative_numbers = true)]
     restitution: f32,
@@ -56,9 +65,10 @@ struct CollideArgs {
     /// Ball mass M (kg).
     #[arg(long, default_value_t = Params::POOL.mass(), allow_negative_numbers = true)]
     mass: f32,
-    /// Model: ideal, kim, kim-grip or reference (f64 first-principles solver).
+    /// Model: one of the core's (ideal, kim, kim-grip, ...) or reference, the f64
+    /// first-principles solver.
     #[arg(long, default_value = "kim-grip", value_parser = cli::parse_model)]
-    model: ModelChoice,
+    model: ModelName,
     /// Print one JSON object on one line instead of the summary.
     #[arg(long)]
     json: bool,
@@ -75,23 +85,27 @@ fn main() -> ExitCode {
         }
     };
     let Command::Collide(args) = parsed.command;
-    let request = CollideRequest {
+    let request = Collide {
         speed: args.speed,
-        cut_deg: args.cut,
+        cut: args.cut,
         spin: if args.roll {
-            SpinInput::Roll
+            Spin::Roll
         } else {
-            SpinInput::Given(args.spin.unwrap_or([0.0; 3]))
+            Spin::Given(args.spin.unwrap_or([0.0; 3]))
         },
-        mu: args.mu,
-        restitution: args.restitution,
-        mu_s: args.mu_s,
-        radius: args.radius,
-        mass: args.mass,
-        model: args.model,
+        with: Overrides {
+            mu: Some(args.mu),
+            mu_b: args.mu_b,
+            mu_c: args.mu_c,
+            restitution: Some(args.restitution),
+            mu_s: Some(args.mu_s),
+            radius: Some(args.radius),
+            mass: Some(args.mass),
+            model: Some(args.model),
+        },
     };
     match cli::collide(&request) {
-        Ok(report) if args.json => println!("{}", report.to_json()),
+        Ok(report) if args.json => println!("{}", report::to_json(&report)),
         Ok(report) => println!("{report}"),
         Err(error) => {
             eprintln!("error: {error}");
