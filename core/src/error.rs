@@ -48,6 +48,8 @@ pub enum Field {
     TipOffset,
     /// Error tolerance of the `Auto` model.
     Tolerance,
+    /// Cue-ball/table sliding friction coefficient `μ_ct`.
+    CueTableFriction,
 }
 
 impl Field {
@@ -69,6 +71,7 @@ impl Field {
             Field::Radius => "radius",
             Field::Mass => "mass",
             Field::Tolerance => "tolerance",
+            Field::CueTableFriction => "mu_ct",
             Field::CueSpeed => "cue_speed",
             Field::CueMass => "cue_mass",
             Field::TipRestitution => "tip_restitution",
@@ -92,6 +95,7 @@ impl Field {
             Field::Radius => "[0.001, 1] m",
             Field::Mass => "[0.001, 100] kg",
             Field::Tolerance => "(0, 1]",
+            Field::CueTableFriction => "[0, 1]",
             Field::CueSpeed => "(0, 20] m/s",
             Field::CueMass => "[0.1, 2] kg",
             Field::TipRestitution => "[0, 1]",

@@ -54,11 +54,16 @@ struct State<R> {
     friction_z: R,
     table_x: R,
     table_y: R,
+    cue_slip_x: R,
+    cue_slip_y: R,
+    cue_table_x: R,
+    cue_table_y: R,
 }
 
 struct Model<R> {
     law: FrictionLaw,
     mu_s: R,
+    mu_ct: R,
     inv_nu: R,
 }
 
@@ -77,6 +82,7 @@ impl<R: Real> Model<R> {
             object_vz = R::ZERO;
         }
         let cue_vz = R::max(s.cue_vz - j_z, R::ZERO);
+        let cue_pressing = R::max(j_z - s.cue_vz, R::ZERO);
         n.slip_y = s.slip_y + R::of(7.0) * j_y;
         n.slip_z = s.slip_z + R::of(2.0) * self.inv_nu * j_z + (object_vz - s.object_vz)
             - (cue_vz - s.cue_vz);
@@ -85,10 +91,32 @@ impl<R: Real> Model<R> {
         n.normal_velocity = s.normal_velocity + R::of(2.0) * dp;
         n.table_slip_x = s.table_slip_x + dp - j_z * self.inv_nu;
         n.table_slip_y = s.table_slip_y + j_y;
+        // The cue ball's table-contact slip c' = U + ω × (−R ẑ): −dp − j_z/ν, −j_y.
+        n.cue_slip_x = s.cue_slip_x - dp - j_z * self.inv_nu;
+        n.cue_slip_y = s.cue_slip_y - j_y;
+        let gain = R::ONE + self.inv_nu; // table-contact slip change per table impulse
+        if cue_pressing > R::ZERO && self.mu_ct > R::ZERO {
+            let length = R::sqrt(n.cue_slip_x * n.cue_slip_x + n.cue_slip_y * n.cue_slip_y);
+            if length > R::ZERO {
+                let magnitude = R::min(self.mu_ct * cue_pressing, length / gain);
+                let (t_x, t_y) = (
+                    -magnitude * n.cue_slip_x / length,
+                    -magnitude * n.cue_slip_y / length,
+                );
+                n.cue_table_x = n.cue_table_x + t_x;
+                n.cue_table_y = n.cue_table_y + t_y;
+                // On the cue ball: ΔU = T and R Δω_y = −T_x/ν enter the slips with the
+                // opposite sign to the object ball's.
+                n.normal_velocity = n.normal_velocity - t_x;
+                n.slip_y = n.slip_y - t_y;
+                n.slip_z = n.slip_z - t_x * self.inv_nu;
+                n.cue_slip_x = n.cue_slip_x + gain * t_x;
+                n.cue_slip_y = n.cue_slip_y + gain * t_y;
+            }
+        }
         if pressing > R::ZERO && self.mu_s > R::ZERO {
             let length = R::sqrt(n.table_slip_x * n.table_slip_x + n.table_slip_y * n.table_slip_y);
             if length > R::ZERO {
-                let gain = R::ONE + self.inv_nu; // Δc per table impulse
                 let magnitude = R::min(self.mu_s * pressing, length / gain);
                 let (t_x, t_y) = (
                     -magnitude * n.table_slip_x / length,
@@ -184,8 +212,10 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
     let model = Model {
         law,
         mu_s: R::of(params.mu_s()),
+        mu_ct: R::of(params.cue_table_friction()),
         inv_nu: R::of(2.5),
     };
+    let (u, w, radius) = (impact.velocity(), impact.spin(), R::of(params.radius()));
     let zero = R::ZERO;
     let mut state = State {
         slip_y,
@@ -200,6 +230,10 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
         friction_z: zero,
         table_x: zero,
         table_y: zero,
+        cue_slip_x: R::of(u.x) - radius * R::of(w.y),
+        cue_slip_y: R::of(u.y) + radius * R::of(w.x),
+        cue_table_x: zero,
+        cue_table_y: zero,
     };
     let frictionless = law.is_frictionless();
     let mut stuck = frictionless || (slip_y == zero && slip_z == zero);
@@ -256,6 +290,8 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
         friction_z: state.friction_z,
         table: -state.table_x,
         table_y: state.table_y,
+        cue_table_x: state.cue_table_x,
+        cue_table_y: state.cue_table_y,
     };
     Outcome::from_impulses(params, impact, impulses, regime)
 }

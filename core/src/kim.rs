@@ -63,6 +63,8 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
         friction_z: j_z,
         table,
         table_y: R::ZERO,
+        cue_table_x: R::ZERO,
+        cue_table_y: R::ZERO,
     };
     Outcome::from_impulses(params, impact, impulses, Regime::Sliding)
 }

@@ -73,12 +73,32 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
     }
 
     let object_pressed = slip_z > R::ZERO;
+    // Draw presses the cue ball into the cloth; its table friction μ_ct (if set) acts
+    // against its table-contact slip c' = U + ω × (−R ẑ), taken at its initial direction.
+    let mu_ct = R::of(params.cue_table_friction());
+    let (cue_dir_x, cue_dir_y) = if !object_pressed && slip_z < R::ZERO && mu_ct > R::ZERO {
+        let (u, w, radius) = (impact.velocity(), impact.spin(), R::of(params.radius()));
+        let (c_x, c_y) = (
+            R::of(u.x) - radius * R::of(w.y),
+            R::of(u.y) + radius * R::of(w.x),
+        );
+        let length = R::sqrt(c_x * c_x + c_y * c_y);
+        if length > R::ZERO {
+            (c_x / length, c_y / length)
+        } else {
+            (R::ZERO, R::ZERO)
+        }
+    } else {
+        (R::ZERO, R::ZERO)
+    };
     let k_z = if object_pressed {
         (R::of(2.0) + nu::<R>() - R::of(params.mu_s())) / nu::<R>()
     } else {
-        (R::of(2.0) + nu::<R>()) / nu::<R>()
+        (R::of(2.0) + nu::<R>() + mu_ct * cue_dir_x) / nu::<R>()
     };
-    let slip = TangentialSlip::new(slip_y, slip_z, scale, k_z);
+    // The cue ball's table friction also moves the slip along y: Δv_y = 7 J_y + k_yz J_z.
+    let k_yz = mu_ct * cue_dir_y;
+    let slip = TangentialSlip::new(slip_y, slip_z, scale, k_yz, k_z);
     if slip.stick_budget == R::ZERO {
         // A slip so small that the impulse cancelling it underflows: exact gearing.
         return Outcome::from_impulses(
@@ -112,10 +132,12 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
     let first_budget = budget_after(frictionless_normal);
     let (_, first_dir_z) = slip.friction_direction(first_budget);
     let first_span = R::min(frictionless_normal, grip_normal);
+    // Table friction along x per unit normal impulse while sliding: the object ball's
+    // (topspin) holds it back, the cue ball's (draw) slows the approach.
     let table_rate = if object_pressed {
         R::of(params.mu_s()) * R::abs(first_dir_z) * first_budget / first_span
     } else {
-        R::ZERO
+        -mu_ct * cue_dir_x * R::abs(first_dir_z) * first_budget / first_span
     };
     let normal = final_normal_impulse(approach, restitution, table_rate, grip_normal);
 
@@ -127,7 +149,17 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
         (slip.stick_y, slip.stick_z, Regime::Gripping)
     };
     let pressing_span = R::min(normal, grip_normal);
-    let table = table_rate * pressing_span;
+    let (table, cue_table_x, cue_table_y) = if object_pressed {
+        (table_rate * pressing_span, R::ZERO, R::ZERO)
+    } else {
+        // Pressing impulse on the cue ball = the upward friction impulse on the object.
+        let pressing = R::max(j_z, R::ZERO);
+        (
+            R::ZERO,
+            -mu_ct * pressing * cue_dir_x,
+            -mu_ct * pressing * cue_dir_y,
+        )
+    };
     let (table_x, table_y) = table_friction_components(table, pressing_span, j_y, j_z);
     let impulses = SpecificImpulses {
         normal,
@@ -135,6 +167,8 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
         friction_z: j_z,
         table: table_x,
         table_y,
+        cue_table_x,
+        cue_table_y,
     };
     Outcome::from_impulses(params, impact, impulses, regime)
 }
@@ -166,11 +200,13 @@ fn table_friction_components<R: Real>(table: R, span: R, j_y: R, j_z: R) -> (R, 
     (table * slip_x / length, -table * slip_y / length)
 }
 
-/// The initial tangential slip and the quantities derived from it.
+/// The initial tangential slip and the quantities derived from it. The slip
+/// compliance is `K = [[k_y, k_yz], [0, k_z]]` (`Δv = K J`).
 struct TangentialSlip<R> {
     /// Slip direction scaled so its largest component is ±1 (`v₀ / scale`).
     unit_y: R,
     unit_z: R,
+    k_yz: R,
     k_z: R,
     /// `|v₀| / scale`.
     unit_norm: R,
@@ -179,23 +215,42 @@ struct TangentialSlip<R> {
     stick_z: R,
     /// `s* = |j_stick|` (m/s): friction budget that stops the slip.
     stick_budget: R,
+    /// `α_b / |v₀|`: where `v₀ − α K v̂₀` turns parallel to `K⁻¹ v₀`.
+    boundary_alpha_per_norm: R,
+    /// `s* / |v₀|`.
+    stick_per_norm: R,
 }
 
 impl<R: Real> TangentialSlip<R> {
-    fn new(slip_y: R, slip_z: R, scale: R, k_z: R) -> Self {
+    fn new(slip_y: R, slip_z: R, scale: R, k_yz: R, k_z: R) -> Self {
         let unit_y = slip_y / scale;
         let unit_z = slip_z / scale;
         let unit_norm = R::sqrt(unit_y * unit_y + unit_z * unit_z);
-        let (unit_stick_y, unit_stick_z) = (-unit_y / k_y::<R>(), -unit_z / k_z);
-        let unit_stick = R::sqrt(unit_stick_y * unit_stick_y + unit_stick_z * unit_stick_z);
+        // K⁻¹ u, u = v₀ / scale.
+        let inverse_z = unit_z / k_z;
+        let inverse_y = (unit_y - k_yz * inverse_z) / k_y::<R>();
+        let unit_stick = R::sqrt(inverse_y * inverse_y + inverse_z * inverse_z);
+        // α_b/|v₀| = cross(u, K⁻¹u) / cross(K u, K⁻¹u); 1/(k_y + k_z) when K is
+        // diagonal, and any value when v₀ is an eigenvector (the direction cannot turn).
+        let (ku_y, ku_z) = (k_y::<R>() * unit_y + k_yz * unit_z, k_z * unit_z);
+        let numerator = unit_y * inverse_z - unit_z * inverse_y;
+        let denominator = ku_y * inverse_z - ku_z * inverse_y;
+        let boundary_alpha_per_norm = if R::abs(denominator) > R::of(1e-12) {
+            numerator / denominator
+        } else {
+            R::ONE / (k_y::<R>() + k_z)
+        };
         Self {
             unit_y,
             unit_z,
+            k_yz,
             k_z,
             unit_norm,
-            stick_y: unit_stick_y * scale,
-            stick_z: unit_stick_z * scale,
+            stick_y: -inverse_y * scale,
+            stick_z: -inverse_z * scale,
             stick_budget: unit_stick * scale,
+            boundary_alpha_per_norm,
+            stick_per_norm: unit_stick / unit_norm,
         }
     }
 
@@ -212,19 +267,18 @@ impl<R: Real> TangentialSlip<R> {
         // α / |v₀| in units where |v₀| = unit_norm · scale; σ = s*/|v₀|.
         let sigma = self.stick_budget_per_norm();
         let alpha_per_norm = half * fraction * sigma
-            + (R::ONE / (k_y::<R>() + self.k_z) - half * sigma) * fraction * fraction;
+            + (self.boundary_alpha_per_norm - half * sigma) * fraction * fraction;
         // v_m / scale = u − (α/|v₀|) K u.
-        let mid_y = self.unit_y * (R::ONE - alpha_per_norm * k_y::<R>());
+        let mid_y =
+            self.unit_y - alpha_per_norm * (k_y::<R>() * self.unit_y + self.k_yz * self.unit_z);
         let mid_z = self.unit_z * (R::ONE - alpha_per_norm * self.k_z);
         let inv = R::ONE / R::sqrt(mid_y * mid_y + mid_z * mid_z);
         (-mid_y * inv, -mid_z * inv)
     }
 
-    /// `s* / |v₀|`, a pure number in `[1/k_y, 1/k_z]`.
+    /// `σ = s* / |v₀|`, a pure number of order `1/k`.
     fn stick_budget_per_norm(&self) -> R {
-        let sy = self.unit_y / k_y::<R>();
-        let sz = self.unit_z / self.k_z;
-        R::sqrt(sy * sy + sz * sz) / self.unit_norm
+        self.stick_per_norm
     }
 }
 
@@ -297,7 +351,7 @@ mod tests {
 
     #[test]
     fn direction_meets_stick_impulse_at_the_boundary() {
-        let slip = TangentialSlip::new(-0.7f32, 0.5, 0.7, 5.0);
+        let slip = TangentialSlip::new(-0.7f32, 0.5, 0.7, 0.0, 5.0);
         let (dy, dz) = slip.friction_direction(slip.stick_budget);
         let (sy, sz) = (
             slip.stick_y / slip.stick_budget,

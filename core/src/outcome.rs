@@ -69,6 +69,10 @@ pub(crate) struct SpecificImpulses<R> {
     pub table: R,
     /// Table friction on the object ball, `y` component.
     pub table_y: R,
+    /// Table friction on the cue ball (pressed in a draw shot), `x` component.
+    pub cue_table_x: R,
+    /// Table friction on the cue ball, `y` component.
+    pub cue_table_y: R,
 }
 
 impl<R: Real> SpecificImpulses<R> {
@@ -80,6 +84,8 @@ impl<R: Real> SpecificImpulses<R> {
             friction_z: R::ZERO,
             table: R::ZERO,
             table_y: R::ZERO,
+            cue_table_x: R::ZERO,
+            cue_table_y: R::ZERO,
         }
     }
 }
@@ -118,6 +124,8 @@ impl Outcome {
             friction_z: j_z,
             table,
             table_y,
+            cue_table_x,
+            cue_table_y,
         } = j;
         let zero = R::ZERO;
         let radius = R::of(params.radius());
@@ -128,12 +136,17 @@ impl Outcome {
         let w = impact.spin();
         let vec = |x: R, y: R, z: R| Vec3::new(x.to_f32(), y.to_f32(), z.to_f32());
         let lifted = |v: R| if v > zero { v } else { zero };
-        let cue_velocity = vec(R::of(u.x) - normal, R::of(u.y) - j_y, lifted(-j_z));
+        let cue_velocity = vec(
+            R::of(u.x) - normal + cue_table_x,
+            R::of(u.y) - j_y + cue_table_y,
+            lifted(-j_z),
+        );
         let object_velocity = vec(normal - table, j_y + table_y, lifted(j_z));
-        // Cue ball: r × (−J) with r = R x̂ gives R (0, j_z, −j_y).
+        // Cue ball: r × (−J) with r = R x̂ gives R (0, j_z, −j_y); its table friction T
+        // at −R ẑ gives R (T_y, −T_x, 0).
         let cue_spin = vec(
-            R::of(w.x),
-            R::of(w.y) + j_z * spin_per_impulse,
+            R::of(w.x) + cue_table_y * spin_per_impulse,
+            R::of(w.y) + (j_z - cue_table_x) * spin_per_impulse,
             R::of(w.z) - j_y * spin_per_impulse,
         );
         // Object ball: (−R x̂) × J gives the same; table friction at −R ẑ:

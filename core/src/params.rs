@@ -14,6 +14,7 @@ pub struct Params {
     friction: FrictionLaw,
     restitution: f32,
     mu_s: f32,
+    cue_table_friction: f32,
     radius: f32,
     mass: f32,
 }
@@ -24,6 +25,7 @@ impl Params {
         friction: FrictionLaw::Constant(0.05),
         restitution: 0.95,
         mu_s: 0.3,
+        cue_table_friction: 0.0,
         radius: 0.028575,
         mass: 0.17,
     };
@@ -40,6 +42,7 @@ impl Params {
             friction: FrictionLaw::constant(mu)?,
             restitution: check(Field::Restitution, restitution, 0.0, 1.0, false)?,
             mu_s: check(Field::TableFriction, mu_s, 0.0, 1.0, false)?,
+            cue_table_friction: 0.0,
             radius: check(Field::Radius, radius, 0.001, 1.0, false)?,
             mass: check(Field::Mass, mass, 0.001, 100.0, false)?,
         })
@@ -49,6 +52,18 @@ impl Params {
     pub fn with_mu(self, mu: f32) -> Result<Self> {
         Ok(Self {
             friction: FrictionLaw::constant(mu)?,
+            ..self
+        })
+    }
+
+    /// Set the cue-ball/table sliding friction μ_ct (in `[0, 1]`; default 0, as the seed
+    /// neglects it). It acts while the cue ball is pressed into the cloth — a draw shot,
+    /// where the ball–ball friction pushes the cue ball down — against the cue ball's
+    /// table-contact slip. Used by `KimGrip`, `Exact` and the reference; `Kim` and `Ideal`
+    /// ignore it.
+    pub fn with_cue_table_friction(self, mu_ct: f32) -> Result<Self> {
+        Ok(Self {
+            cue_table_friction: check(Field::CueTableFriction, mu_ct, 0.0, 1.0, false)?,
             ..self
         })
     }
@@ -100,6 +115,10 @@ impl Params {
     /// Object-ball/table static friction μ_s.
     pub const fn mu_s(&self) -> f32 {
         self.mu_s
+    }
+    /// Cue-ball/table sliding friction μ_ct (0 unless set).
+    pub const fn cue_table_friction(&self) -> f32 {
+        self.cue_table_friction
     }
     /// Ball radius R (m).
     pub const fn radius(&self) -> f32 {

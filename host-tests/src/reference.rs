@@ -68,7 +68,7 @@ impl ReferenceParams {
             mu_c,
             restitution: p.restitution() as f64,
             mu_s: p.mu_s() as f64,
-            cue_table_friction: 0.0,
+            cue_table_friction: p.cue_table_friction() as f64,
             radius: p.radius() as f64,
             mass: p.mass() as f64,
         }
