@@ -1,26 +1,14 @@
-//! How the firmware ends: through semihosting, with a status QEMU turns into its own
-//! exit code. Panics and faults end with failure, so a broken image cannot pass.
+//! Panics and faults end the program with failure ([`crate::board::exit`]), so a broken image
+//! cannot pass: under QEMU the exit code is non-zero.
 //!
-//! Everything is logged with defmt only: the defmt frames share semihosting's stdout
-//! with nothing else, so plain text must never be written there.
+//! Everything is logged with defmt only: under QEMU the defmt frames share the
+//! semihosting console with nothing else, so plain text must never be written there.
 
 use core::sync::atomic::{AtomicBool, Ordering};
 
 use cortex_m_rt::{exception, ExceptionFrame};
-use cortex_m_semihosting::debug;
 
-/// Ends the program: QEMU exits with 0 for `success`, with 1 otherwise.
-pub fn exit(success: bool) -> ! {
-    debug::exit(if success {
-        debug::EXIT_SUCCESS
-    } else {
-        debug::EXIT_FAILURE
-    });
-    // Only reached without a semihosting host (a real board with no debugger).
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
+use crate::board::exit;
 
 /// Set once a panic (or fault) is being reported; a second one exits at once, so a
 /// failure inside the logger cannot recurse.

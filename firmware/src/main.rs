@@ -1,23 +1,57 @@
-//! cuesight on a Cortex-M4F: evaluates every model on a handful of built-in shots,
-//! logs each outcome with defmt and exits through semihosting (0 when every outcome
-//! is sane, non-zero otherwise). Boots under QEMU's `mps2-an386`: `cargo xtask run`.
+//! cuesight on a Cortex-M4F: answers the newline-delimited JSON protocol of
+//! `cuesight-protocol` on the board's serial port (`collide`, `params`, `stroke`,
+//! `version`, `shutdown`; see `docs/protocol.md`), logging with defmt.
+//!
+//! At boot it runs every model on a few built-in shots as a self-test (exit with
+//! failure if any outcome is not finite and sane), then serves until a `shutdown`
+//! request, after which it exits with success. Panics and faults exit with failure
+//! (`exit.rs`). Boots under QEMU's `mps2-an386`: `cargo xtask run`.
 #![no_std]
 #![no_main]
 #![deny(unsafe_code)]
 #![deny(missing_docs)]
 
+mod board;
 mod exit;
+mod serve;
 mod shots;
 
-use defmt_semihosting as _; // global defmt logger: frames go to the host's stdout
+use cuesight_protocol::{Identity, Session, MAX_LINE, PROTOCOL_VERSION};
+
+/// Firmware name and version, as `version` reports them.
+const FIRMWARE: &str = concat!(env!("CARGO_PKG_NAME"), " ", env!("CARGO_PKG_VERSION"));
 
 #[cortex_m_rt::entry]
 fn main() -> ! {
-    defmt::info!(
-        "cuesight firmware: {=usize} shots x {=usize} models",
-        shots::SHOTS.len(),
-        cuesight::Model::ALL.len()
-    );
+    let mut board = board::init();
+    defmt::info!("{=str} on {=str}", FIRMWARE, board::NAME);
+
     let failures = shots::run_all();
-    exit::exit(failures == 0)
+    if failures != 0 {
+        board::exit(false);
+    }
+
+    let mut session = Session::new(Identity {
+        firmware: FIRMWARE,
+        board: board::NAME,
+    });
+    defmt::info!(
+        "serving protocol {=u32} on the serial port (lines up to {=usize} bytes)",
+        PROTOCOL_VERSION,
+        MAX_LINE
+    );
+    match serve::serve(&mut board.serial, &mut session) {
+        Ok(()) => {
+            defmt::info!(
+                "shutdown: {=u32} requests answered, {=u32} with an error",
+                session.requests(),
+                session.errors()
+            );
+            board::exit(true)
+        }
+        Err(error) => {
+            defmt::error!("serial port failed: {}", defmt::Debug2Format(&error));
+            board::exit(false)
+        }
+    }
 }

@@ -120,7 +120,7 @@ pub fn run_all() -> u32 {
     }
     if failures == 0 {
         defmt::info!(
-            "all {=usize} outcomes finite and sane",
+            "boot self-test: all {=usize} outcomes finite and sane",
             SHOTS.len() * Model::ALL.len()
         );
     } else {
@@ -138,12 +138,12 @@ fn log(shot: &Shot, model: Model, out: &Outcome) {
         out.throw_angle_deg(),
         out.cue_deflection_deg(),
     );
-    defmt::info!(
+    defmt::debug!(
         "  cue    v {} m/s, w {} rad/s",
         out.cue_ball.velocity.to_array(),
         out.cue_ball.spin.to_array()
     );
-    defmt::info!(
+    defmt::debug!(
         "  object v {} m/s, w {} rad/s",
         out.object_ball.velocity.to_array(),
         out.object_ball.spin.to_array()
