@@ -50,6 +50,20 @@ pub enum Field {
     Tolerance,
     /// Cue-ball/table sliding friction coefficient `μ_ct`.
     CueTableFriction,
+    /// Ball–cloth sliding friction `μ_c`.
+    ClothFriction,
+    /// Rolling resistance `μ_r`.
+    RollingResistance,
+    /// A position on the table (m).
+    Position,
+    /// Table dimensions or pocket geometry (m).
+    Table,
+    /// Aim direction.
+    Aim,
+    /// Index of a ball in the scene.
+    BallIndex,
+    /// Number of balls (capacity of the scene).
+    BallCount,
 }
 
 impl Field {
@@ -72,6 +86,13 @@ impl Field {
             Field::Mass => "mass",
             Field::Tolerance => "tolerance",
             Field::CueTableFriction => "mu_ct",
+            Field::ClothFriction => "mu_cloth",
+            Field::RollingResistance => "mu_roll",
+            Field::Position => "position",
+            Field::Table => "table",
+            Field::Aim => "aim",
+            Field::BallIndex => "ball",
+            Field::BallCount => "balls",
             Field::CueSpeed => "cue_speed",
             Field::CueMass => "cue_mass",
             Field::TipRestitution => "tip_restitution",
@@ -96,6 +117,13 @@ impl Field {
             Field::Mass => "[0.001, 100] kg",
             Field::Tolerance => "(0, 1]",
             Field::CueTableFriction => "[0, 1]",
+            Field::ClothFriction => "(0, 1]",
+            Field::RollingResistance => "(0, 0.5]",
+            Field::Position => "on the table, not overlapping another ball",
+            Field::Table => "(0, 10] m, pockets on the table",
+            Field::Aim => "a non-zero finite direction",
+            Field::BallIndex => "an index of a ball in the scene",
+            Field::BallCount => "1..=16 balls",
             Field::CueSpeed => "(0, 20] m/s",
             Field::CueMass => "[0.1, 2] kg",
             Field::TipRestitution => "[0, 1]",

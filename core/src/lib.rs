@@ -38,6 +38,7 @@ mod outcome;
 mod params;
 mod real;
 pub mod strike;
+pub mod travel;
 mod vector;
 
 pub use error::{Error, Field, Result};

@@ -1,0 +1,340 @@
+//! A ball's motion on the cloth after a strike or a collision (TP A.4, TP 4.1): sliding
+//! on a parabola until the contact rolls, then rolling in a straight line until rolling
+//! resistance stops it; a ball lifted by the collision flies first.
+//!
+//! With the table-contact slip `u = v + ω × (−R ẑ) = (v_x − R ω_y, v_y + R ω_x)`, cloth
+//! friction `μ_c M g` acts against `u`, whose direction stays constant while it slides
+//! (TP A.4), so:
+//!
+//! * `r(t) = r₀ + v₀ t − ½ μ_c g t² û`, `v(t) = v₀ − μ_c g t û` for `t ≤ t_s`,
+//!   `t_s = 2|u₀| / (7 μ_c g)` (the slip falls at `(1 + 1/ν) μ_c g = 3.5 μ_c g`);
+//! * the rolling velocity `v_r = v₀ − (2/7) u₀` (`= 5/7 v₀ + 2/7 ω₀ × R ẑ`);
+//! * then `|v|` falls at `μ_r g` along `v̂_r`: the ball stops after `|v_r| / (μ_r g)`, at
+//!   `|v_r|² / (2 μ_r g)` from where it started rolling.
+//!
+//! A ball that leaves the cloth with `v_z > 0` flies for `2 v_z / g` (hop height
+//! `v_z² / (2g)`) and lands with its horizontal velocity and spin unchanged (bounces,
+//! spin decay about `z` and cushions are not modelled). Positions are in metres on the
+//! table, times in seconds.
+
+use crate::error::{check, Field, Result};
+use crate::math;
+use crate::vector::Vec3;
+use crate::NU;
+
+/// Standard gravity (m/s²).
+pub const GRAVITY: f32 = 9.81;
+
+/// Ball–cloth friction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Cloth {
+    sliding: f32,
+    rolling: f32,
+}
+
+impl Cloth {
+    /// Typical pool cloth: sliding μ_c = 0.2, rolling resistance μ_r = 0.01
+    /// (physics-notes §5).
+    pub const TYPICAL: Self = Self {
+        sliding: 0.2,
+        rolling: 0.01,
+    };
+
+    /// Sliding friction `μ_c` in `(0, 1]` and rolling resistance `μ_r` in `(0, 0.5]`.
+    pub fn new(sliding: f32, rolling: f32) -> Result<Self> {
+        Ok(Self {
+            sliding: check(Field::ClothFriction, sliding, 0.0, 1.0, true)?,
+            rolling: check(Field::RollingResistance, rolling, 0.0, 0.5, true)?,
+        })
+    }
+
+    /// Sliding friction coefficient μ_c.
+    pub const fn sliding(&self) -> f32 {
+        self.sliding
+    }
+
+    /// Rolling resistance coefficient μ_r.
+    pub const fn rolling(&self) -> f32 {
+        self.rolling
+    }
+}
+
+/// Closed-form motion of one ball from a starting state until it stops.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Motion {
+    /// Where the ball starts (m; `z` ignored).
+    pub start: Vec3,
+    /// Flight time before it is back on the cloth (s; zero if it never leaves it).
+    pub air_time: f32,
+    /// Hop height of the centre above its resting height (m).
+    pub hop_height: f32,
+    /// Horizontal velocity when the cloth phase starts (m/s).
+    pub initial_velocity: Vec3,
+    /// Constant acceleration while sliding (m/s², horizontal).
+    pub sliding_acceleration: Vec3,
+    /// Sliding time (s) once on the cloth.
+    pub sliding_time: f32,
+    /// Velocity when pure rolling starts (m/s).
+    pub rolling_velocity: Vec3,
+    /// Rolling time until the ball stops (s).
+    pub rolling_time: f32,
+    rolling_deceleration: f32,
+}
+
+impl Motion {
+    /// Motion of a ball at `position` with velocity `velocity` (m/s; a positive `z` is a
+    /// hop) and spin `spin` (rad/s), radius `radius` (m), on `cloth`.
+    pub fn new(position: Vec3, velocity: Vec3, spin: Vec3, radius: f32, cloth: &Cloth) -> Self {
+        let air_time = if velocity.z > 0.0 {
+            2.0 * velocity.z / GRAVITY
+        } else {
+            0.0
+        };
+        let hop_height = if velocity.z > 0.0 {
+            velocity.z * velocity.z / (2.0 * GRAVITY)
+        } else {
+            0.0
+        };
+        let horizontal = Vec3::new(velocity.x, velocity.y, 0.0);
+        let slip = Vec3::new(
+            velocity.x - radius * spin.y,
+            velocity.y + radius * spin.x,
+            0.0,
+        );
+        let slip_speed = slip.length();
+        let friction = cloth.sliding * GRAVITY;
+        let (sliding_acceleration, sliding_time) = if slip_speed > 0.0 {
+            (
+                slip * (-friction / slip_speed),
+                slip_speed / ((1.0 + 1.0 / NU) * friction),
+            )
+        } else {
+            (Vec3::ZERO, 0.0)
+        };
+        let rolling_velocity = horizontal + sliding_acceleration * sliding_time;
+        let rolling_deceleration = cloth.rolling * GRAVITY;
+        let rolling_time = rolling_velocity.length() / rolling_deceleration;
+        Self {
+            start: Vec3::new(position.x, position.y, 0.0),
+            air_time,
+            hop_height,
+            initial_velocity: horizontal,
+            sliding_acceleration,
+            sliding_time,
+            rolling_velocity,
+            rolling_time,
+            rolling_deceleration,
+        }
+    }
+
+    /// Time from the start until the ball stops (s).
+    pub fn stop_time(&self) -> f32 {
+        self.air_time + self.sliding_time + self.rolling_time
+    }
+
+    /// Where the cloth phase starts (after any flight).
+    pub fn landing(&self) -> Vec3 {
+        self.start + self.initial_velocity * self.air_time
+    }
+
+    /// Where pure rolling starts.
+    pub fn rolling_start(&self) -> Vec3 {
+        let t = self.sliding_time;
+        self.landing() + self.initial_velocity * t + self.sliding_acceleration * (0.5 * t * t)
+    }
+
+    /// Where the ball comes to rest.
+    pub fn rest(&self) -> Vec3 {
+        let speed = self.rolling_velocity.length();
+        if speed == 0.0 {
+            return self.rolling_start();
+        }
+        self.rolling_start() + self.rolling_velocity * (0.5 * self.rolling_time)
+    }
+
+    /// Position at time `t` (s) after the start (clamped to the rest position).
+    pub fn position_at(&self, t: f32) -> Vec3 {
+        if t <= self.air_time {
+            return self.start + self.initial_velocity * math::max(t, 0.0);
+        }
+        let t = t - self.air_time;
+        if t <= self.sliding_time {
+            return self.landing()
+                + self.initial_velocity * t
+                + self.sliding_acceleration * (0.5 * t * t);
+        }
+        let t = t - self.sliding_time;
+        if t >= self.rolling_time {
+            return self.rest();
+        }
+        let speed = self.rolling_velocity.length();
+        let travelled = speed * t - 0.5 * self.rolling_deceleration * t * t;
+        self.rolling_start() + self.rolling_velocity * (travelled / speed)
+    }
+
+    /// Velocity at time `t` (s) after the start (horizontal).
+    pub fn velocity_at(&self, t: f32) -> Vec3 {
+        if t <= self.air_time {
+            return self.initial_velocity;
+        }
+        let t = t - self.air_time;
+        if t <= self.sliding_time {
+            return self.initial_velocity + self.sliding_acceleration * t;
+        }
+        let t = t - self.sliding_time;
+        if t >= self.rolling_time {
+            return Vec3::ZERO;
+        }
+        let speed = self.rolling_velocity.length();
+        self.rolling_velocity * ((speed - self.rolling_deceleration * t) / speed)
+    }
+
+    /// First time (s) the centre crosses the segment from `a` to `b` (table plane), if
+    /// it does before stopping. Each phase is a polynomial of degree ≤ 2 in time, so the
+    /// crossings are roots of `n · (r(t) − a) = 0`, `n ⟂ (b − a)`.
+    pub fn crossing(&self, a: Vec3, b: Vec3) -> Option<f32> {
+        let along = Vec3::new(b.x - a.x, b.y - a.y, 0.0);
+        let normal = Vec3::new(-along.y, along.x, 0.0);
+        let length_squared = along.dot(along);
+        if length_squared == 0.0 {
+            return None;
+        }
+        // Phases as r(τ) = p + q τ + s τ², τ in [0, span], starting at `offset`.
+        let speed = self.rolling_velocity.length();
+        let rolling_direction = if speed > 0.0 {
+            self.rolling_velocity * (1.0 / speed)
+        } else {
+            Vec3::ZERO
+        };
+        let phases = [
+            (
+                0.0,
+                self.air_time,
+                self.start,
+                self.initial_velocity,
+                Vec3::ZERO,
+            ),
+            (
+                self.air_time,
+                self.sliding_time,
+                self.landing(),
+                self.initial_velocity,
+                self.sliding_acceleration * 0.5,
+            ),
+            (
+                self.air_time + self.sliding_time,
+                self.rolling_time,
+                self.rolling_start(),
+                self.rolling_velocity,
+                rolling_direction * (-0.5 * self.rolling_deceleration),
+            ),
+        ];
+        for (offset, span, p, q, s) in phases {
+            if span <= 0.0 {
+                continue;
+            }
+            let c0 = normal.dot(p - a);
+            let c1 = normal.dot(q);
+            let c2 = normal.dot(s);
+            let mut roots = [f32::NAN; 2];
+            solve_quadratic(c2, c1, c0, &mut roots);
+            let mut best: Option<f32> = None;
+            for tau in roots {
+                if !(tau >= 0.0 && tau <= span) {
+                    continue;
+                }
+                let point = p + q * tau + s * (tau * tau);
+                let along_fraction = along.dot(point - a) / length_squared;
+                if (0.0..=1.0).contains(&along_fraction) && best.is_none_or(|b| tau < b) {
+                    best = Some(tau);
+                }
+            }
+            if let Some(tau) = best {
+                return Some(offset + tau);
+            }
+        }
+        None
+    }
+}
+
+/// Real roots of `a x² + b x + c = 0` into `roots` (NaN where absent), stable form.
+fn solve_quadratic(a: f32, b: f32, c: f32, roots: &mut [f32; 2]) {
+    let scale = math::max(math::max(math::abs(a), math::abs(b)), math::abs(c));
+    if scale == 0.0 {
+        return;
+    }
+    if math::abs(a) <= 1e-7 * scale {
+        if b != 0.0 {
+            roots[0] = -c / b;
+        }
+        return;
+    }
+    let discriminant = b * b - 4.0 * a * c;
+    if discriminant < 0.0 {
+        return;
+    }
+    let root = math::sqrt(discriminant);
+    let q = -0.5 * (b + if b >= 0.0 { root } else { -root });
+    roots[0] = q / a;
+    if q != 0.0 {
+        roots[1] = c / q;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const R: f32 = 0.028575;
+
+    #[test]
+    fn stun_ball_rolls_at_five_sevenths_after_tp_4_1_distance() {
+        let v0 = 2.0;
+        let m = Motion::new(
+            Vec3::ZERO,
+            Vec3::new(v0, 0.0, 0.0),
+            Vec3::ZERO,
+            R,
+            &Cloth::TYPICAL,
+        );
+        assert!((m.rolling_velocity.x - 5.0 / 7.0 * v0).abs() < 1e-5);
+        let expected = 12.0 * v0 * v0 / (49.0 * 0.2 * GRAVITY); // TP 4.1
+        assert!(
+            (m.rolling_start().x - expected).abs() < 1e-5,
+            "{}",
+            m.rolling_start().x
+        );
+    }
+
+    #[test]
+    fn natural_roll_does_not_slide() {
+        let v = Vec3::new(1.0, 0.5, 0.0);
+        let spin = Vec3::new(-0.5 / R, 1.0 / R, 0.0);
+        let m = Motion::new(Vec3::ZERO, v, spin, R, &Cloth::TYPICAL);
+        assert!(m.sliding_time < 1e-6);
+        assert!((m.rest() - v * (v.length() / (2.0 * 0.01 * GRAVITY))).length() < 1e-4);
+    }
+
+    #[test]
+    fn crossing_finds_a_segment_ahead_and_ignores_one_behind() {
+        let m = Motion::new(
+            Vec3::ZERO,
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::ZERO,
+            R,
+            &Cloth::TYPICAL,
+        );
+        let t = m
+            .crossing(Vec3::new(1.0, -0.1, 0.0), Vec3::new(1.0, 0.1, 0.0))
+            .unwrap();
+        assert!((m.position_at(t).x - 1.0).abs() < 1e-4);
+        assert!(m
+            .crossing(Vec3::new(-1.0, -0.1, 0.0), Vec3::new(-1.0, 0.1, 0.0))
+            .is_none());
+        assert!(m
+            .crossing(Vec3::new(1.0, 0.05, 0.0), Vec3::new(1.0, 0.1, 0.0))
+            .is_none());
+    }
+}
