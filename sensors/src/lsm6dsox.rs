@@ -2,8 +2,9 @@
 //!
 //! # Register map used
 //!
-//! Addresses and bit layouts from ST's LSM6DSOX register description (datasheet
-//! DS12814, §9; the same addresses are in ST's reference driver `lsm6dsox_reg.h`).
+//! Addresses, bit layouts and the `WHO_AM_I` value as in ST's reference driver
+//! `lsm6dsox_reg.h` (github.com/STMicroelectronics/lsm6dsox-pid), which follows the
+//! register description of the LSM6DSOX datasheet.
 //!
 //! | register | addr | access | value written / meaning |
 //! |---|---|---|---|
@@ -22,8 +23,12 @@
 //! bytes in one transaction (gyro first, then accelerometer), and `BDU` keeps the low and
 //! high bytes of each axis from the same sample.
 //!
-//! Sensitivities (datasheet table 2, also ST's driver conversions): ±16 g →
-//! 0.488 mg/LSB; ±2000 dps → 70 mdps/LSB.
+//! Sensitivities, as in ST's driver conversions `lsm6dsox_from_fs16_to_mg` and
+//! `lsm6dsox_from_fs2000_to_mdps`: ±16 g → 0.488 mg/LSB; ±2000 dps → 70 mdps/LSB.
+//!
+//! `WHO_AM_I` is `0x6C` on the LSM6DSO and LSM6DSO32 as well. On an LSM6DSO32,
+//! `FS_XL = 01` selects ±32 g, so every acceleration read here would be half the true
+//! value: the board must carry an LSM6DSOX (or LSM6DSO).
 //!
 //! # Bus budget
 //!
@@ -301,7 +306,8 @@ impl<I: I2c> Lsm6dsox<I> {
 }
 
 /// ODR from the `INTERNAL_FREQ_FINE` trim byte: `6667 Hz × (1 + 0.0015 × trim)` with the
-/// byte read as two's complement (ST application note AN5272 for the LSM6DSOX).
+/// byte read as two's complement, 0.15 % per LSB (ST's reference driver,
+/// `lsm6dsox_odr_cal_reg_get`).
 pub fn trimmed_odr_hz(trim: u8) -> f32 {
     let trim = f32::from(trim as i8);
     NOMINAL_ODR_HZ * (1.0 + 0.0015 * trim)
