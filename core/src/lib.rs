@@ -24,6 +24,7 @@
 #![deny(unsafe_code)]
 #![deny(missing_docs)]
 
+pub mod aim;
 mod error;
 mod estimate;
 mod exact;
@@ -37,7 +38,9 @@ mod model;
 mod outcome;
 mod params;
 mod real;
+pub mod shot;
 pub mod strike;
+pub mod table;
 pub mod travel;
 mod vector;
 

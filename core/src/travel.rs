@@ -80,7 +80,10 @@ pub struct Motion {
     pub rolling_velocity: Vec3,
     /// Rolling time until the ball stops (s).
     pub rolling_time: f32,
+    /// Spin at the start (rad/s).
+    pub initial_spin: Vec3,
     rolling_deceleration: f32,
+    radius: f32,
 }
 
 impl Motion {
@@ -125,8 +128,87 @@ impl Motion {
             sliding_time,
             rolling_velocity,
             rolling_time,
+            initial_spin: spin,
             rolling_deceleration,
+            radius,
         }
+    }
+
+    /// Spin at time `t` (s): constant in flight; while sliding the cloth friction's
+    /// torque `(−R ẑ) × M a` turns it towards natural roll; then natural roll `ẑ × v / R`
+    /// (the spin about `z` is kept: its slow decay is not modelled).
+    pub fn spin_at(&self, t: f32) -> Vec3 {
+        let w = self.initial_spin;
+        if t <= self.air_time {
+            return w;
+        }
+        let sliding = t - self.air_time;
+        if sliding <= self.sliding_time {
+            let a = self.sliding_acceleration;
+            return w + Vec3::new(a.y, -a.x, 0.0) * (sliding / (NU * self.radius));
+        }
+        let v = self.velocity_at(t);
+        Vec3::new(-v.y / self.radius, v.x / self.radius, w.z)
+    }
+
+    /// Each phase as `r(τ) = p + q τ + s τ²`, `τ ∈ [0, span]`, starting at `offset`.
+    fn phases(&self) -> [(f32, f32, Vec3, Vec3, Vec3); 3] {
+        let speed = self.rolling_velocity.length();
+        let rolling_direction = if speed > 0.0 {
+            self.rolling_velocity * (1.0 / speed)
+        } else {
+            Vec3::ZERO
+        };
+        [
+            (
+                0.0,
+                self.air_time,
+                self.start,
+                self.initial_velocity,
+                Vec3::ZERO,
+            ),
+            (
+                self.air_time,
+                self.sliding_time,
+                self.landing(),
+                self.initial_velocity,
+                self.sliding_acceleration * 0.5,
+            ),
+            (
+                self.air_time + self.sliding_time,
+                self.rolling_time,
+                self.rolling_start(),
+                self.rolling_velocity,
+                rolling_direction * (-0.5 * self.rolling_deceleration),
+            ),
+        ]
+    }
+
+    /// First time (s) at which the centre has advanced `distance` (m) along the unit
+    /// direction `direction` from the start, if it gets that far.
+    pub fn time_to_reach(&self, direction: Vec3, distance: f32) -> Option<f32> {
+        for (offset, span, p, q, s) in self.phases() {
+            if span <= 0.0 {
+                continue;
+            }
+            let mut roots = [f32::NAN; 2];
+            solve_quadratic(
+                direction.dot(s),
+                direction.dot(q),
+                direction.dot(p - self.start) - distance,
+                &mut roots,
+            );
+            let first = roots
+                .into_iter()
+                .filter(|tau| *tau >= 0.0 && *tau <= span)
+                .fold(None, |best: Option<f32>, tau| {
+                    Some(best.map_or(tau, |b| if tau < b { tau } else { b }))
+                });
+            if let Some(tau) = first {
+                return Some(offset + tau);
+            }
+        }
+        None
     }
 
     /// Time from the start until the ball stops (s).
@@ -201,37 +283,7 @@ impl Motion {
         if length_squared == 0.0 {
             return None;
         }
-        // Phases as r(τ) = p + q τ + s τ², τ in [0, span], starting at `offset`.
-        let speed = self.rolling_velocity.length();
-        let rolling_direction = if speed > 0.0 {
-            self.rolling_velocity * (1.0 / speed)
-        } else {
-            Vec3::ZERO
-        };
-        let phases = [
-            (
-                0.0,
-                self.air_time,
-                self.start,
-                self.initial_velocity,
-                Vec3::ZERO,
-            ),
-            (
-                self.air_time,
-                self.sliding_time,
-                self.landing(),
-                self.initial_velocity,
-                self.sliding_acceleration * 0.5,
-            ),
-            (
-                self.air_time + self.sliding_time,
-                self.rolling_time,
-                self.rolling_start(),
-                self.rolling_velocity,
-                rolling_direction * (-0.5 * self.rolling_deceleration),
-            ),
-        ];
-        for (offset, span, p, q, s) in phases {
+        for (offset, span, p, q, s) in self.phases() {
             if span <= 0.0 {
                 continue;
             }

@@ -1,0 +1,243 @@
+//! The forward shot chain: stroke → cue-ball travel → first contact → collision →
+//! both balls' paths → pocket.
+//!
+//! 1. The cue strike (TP A.30, [`crate::strike`]) gives the cue ball's speed and spin
+//!    in its travel frame; with a level cue the cloth slip is along the aim, so the cue
+//!    ball travels straight (sliding, then rolling; [`crate::travel`]).
+//! 2. The first ball whose centre comes within `2R` of the cue ball's path is hit
+//!    (swept-sphere test, [`Scene::contact_distance`]), if the cue ball gets there.
+//! 3. At contact the line of centres fixes the collision frame (physics-notes §1): the
+//!    cut angle and the collision-frame velocity and spin follow by projection, and the
+//!    chosen model (normally `Auto`) predicts the outcome.
+//! 4. Both balls' post-impact states, rotated back to the table, start their own
+//!    [`Motion`]s; the object ball reaches a pocket if its centre crosses the pocket's
+//!    target segment before it stops.
+
+use crate::error::{check, Error, Field, Result};
+use crate::impact::Impact;
+use crate::math;
+use crate::model::{collide, Model};
+use crate::outcome::Outcome;
+use crate::params::Params;
+use crate::strike::{strike, Cue, Strike, TipOffset};
+use crate::table::Scene;
+use crate::travel::{Cloth, Motion};
+use crate::vector::Vec3;
+
+/// A stroke: cue speed at the tip impact, tip offset, and horizontal aim direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Stroke {
+    /// Cue speed just before the tip hits the ball (m/s).
+    pub cue_speed: f32,
+    /// Tip offset from the ball centre.
+    pub tip: TipOffset,
+    aim: Vec3,
+}
+
+impl Stroke {
+    /// Stroke aimed along `direction` (table frame, any non-zero length).
+    pub fn new(cue_speed: f32, tip: TipOffset, direction: [f32; 2]) -> Result<Self> {
+        let x = check(Field::Aim, direction[0], -1e6, 1e6, false)?;
+        let y = check(Field::Aim, direction[1], -1e6, 1e6, false)?;
+        let length = math::sqrt(x * x + y * y);
+        if length == 0.0 {
+            return Err(Error::OutOfRange {
+                field: Field::Aim,
+                value: 0.0,
+            });
+        }
+        Ok(Self {
+            cue_speed,
+            tip,
+            aim: Vec3::new(x / length, y / length, 0.0),
+        })
+    }
+
+    /// Stroke aimed at `angle` (rad, counter-clockwise from the table's `x` axis).
+    pub fn at_angle(cue_speed: f32, tip: TipOffset, angle: f32) -> Result<Self> {
+        let angle = check(Field::Aim, angle, -1e3, 1e3, false)?;
+        Self::new(cue_speed, tip, [math::cos(angle), math::sin(angle)])
+    }
+
+    /// Unit aim direction.
+    pub const fn aim(&self) -> Vec3 {
+        self.aim
+    }
+}
+
+/// Everything the shot chain needs besides the scene and the stroke.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShotSetup {
+    /// Collision parameters (its radius and mass must be the scene's balls').
+    pub params: Params,
+    /// The cue.
+    pub cue: Cue,
+    /// The cloth.
+    pub cloth: Cloth,
+    /// The collision model (e.g. `Model::Auto { tolerance: 1e-3 }`).
+    pub model: Model,
+}
+
+/// The first collision of a shot and what follows it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contact {
+    /// Index of the ball hit.
+    pub object_ball: usize,
+    /// Time from the strike to the contact (s).
+    pub time: f32,
+    /// Cue-ball centre at contact (m).
+    pub cue_position: Vec3,
+    /// Unit line of centres (the collision frame's `x`, table frame).
+    pub line_of_centres: Vec3,
+    /// Cut angle φ (rad): from the line of centres to the cue ball's velocity,
+    /// counter-clockwise positive.
+    pub cut_angle: f32,
+    /// The collision-frame input handed to the model.
+    pub impact: Impact,
+    /// The model's output, collision frame.
+    pub outcome: Outcome,
+    /// Cue ball from the contact on (table frame).
+    pub cue_after: Motion,
+    /// Object ball from the contact on (table frame).
+    pub object_after: Motion,
+    /// First pocket whose target segment the object ball's centre crosses, with the
+    /// time after the impact (s).
+    pub pocket: Option<(usize, f32)>,
+}
+
+/// A played shot.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shot {
+    /// Cue-ball launch (travel frame: `x` along the aim).
+    pub launch: Strike,
+    /// Cue ball from the strike on, ignoring any collision.
+    pub cue_before: Motion,
+    /// The first collision, if the cue ball reaches a ball.
+    pub contact: Option<Contact>,
+}
+
+/// Play `stroke` on `scene` with the model of `setup`.
+pub fn play(scene: &Scene, stroke: &Stroke, setup: &ShotSetup) -> Result<Shot> {
+    let model = setup.model;
+    play_with(scene, stroke, setup, |params, impact| {
+        collide(params, impact, model)
+    })
+}
+
+/// Play `stroke` on `scene`, predicting the collision with `collision` (e.g. a host-side
+/// reference solver).
+pub fn play_with<F>(
+    scene: &Scene,
+    stroke: &Stroke,
+    setup: &ShotSetup,
+    mut collision: F,
+) -> Result<Shot>
+where
+    F: FnMut(&Params, &Impact) -> Result<Outcome>,
+{
+    let params = &setup.params;
+    let radius = scene.radius();
+    if math::abs(params.radius() - radius) > 1e-6 * radius {
+        return Err(Error::OutOfRange {
+            field: Field::Radius,
+            value: params.radius(),
+        });
+    }
+    let launch = strike(params, &setup.cue, stroke.tip, stroke.cue_speed)?;
+    let aim = stroke.aim;
+    let side = Vec3::new(-aim.y, aim.x, 0.0); // ẑ × aim
+    let travel = launch.velocity();
+    let travel_spin = launch.spin;
+    let cue_start = scene.balls()[0];
+    let velocity = aim * travel.x;
+    let spin = aim * travel_spin.x + side * travel_spin.y + Vec3::new(0.0, 0.0, travel_spin.z);
+    let cue_before = Motion::new(cue_start, velocity, spin, radius, &setup.cloth);
+
+    // First ball on the path that the cue ball reaches.
+    let mut first: Option<(usize, f32)> = None;
+    for index in 1..scene.balls().len() {
+        if let Some(distance) = scene.contact_distance(aim, index) {
+            if first.is_none_or(|(_, d)| distance < d) {
+                first = Some((index, distance));
+            }
+        }
+    }
+    let contact = match first
+        .and_then(|(index, distance)| Some((index, cue_before.time_to_reach(aim, distance)?)))
+    {
+        None => None,
+        Some((index, time)) => Some(collide_at(
+            scene,
+            setup,
+            &cue_before,
+            index,
+            time,
+            &mut collision,
+        )?),
+    };
+    Ok(Shot {
+        launch,
+        cue_before,
+        contact,
+    })
+}
+
+fn collide_at<F>(
+    scene: &Scene,
+    setup: &ShotSetup,
+    cue_before: &Motion,
+    index: usize,
+    time: f32,
+    collision: &mut F,
+) -> Result<Contact>
+where
+    F: FnMut(&Params, &Impact) -> Result<Outcome>,
+{
+    let radius = scene.radius();
+    let cue_position = cue_before.position_at(time);
+    let object_position = scene.balls()[index];
+    let centres = object_position - cue_position;
+    let centres = centres * (1.0 / centres.length());
+    let across = Vec3::new(-centres.y, centres.x, 0.0); // collision-frame y = ẑ × x
+    let v = cue_before.velocity_at(time);
+    let w = cue_before.spin_at(time);
+    let (v_x, v_y) = (v.dot(centres), v.dot(across));
+    let impact = Impact::from_velocity([v_x, v_y], [w.dot(centres), w.dot(across), w.z])?;
+    let outcome = collision(&setup.params, &impact)?;
+    let to_table = |c: Vec3| centres * c.x + across * c.y + Vec3::new(0.0, 0.0, c.z);
+    let cue_after = Motion::new(
+        cue_position,
+        to_table(outcome.cue_ball.velocity),
+        to_table(outcome.cue_ball.spin),
+        radius,
+        &setup.cloth,
+    );
+    let object_after = Motion::new(
+        object_position,
+        to_table(outcome.object_ball.velocity),
+        to_table(outcome.object_ball.spin),
+        radius,
+        &setup.cloth,
+    );
+    let mut pocket: Option<(usize, f32)> = None;
+    for (i, p) in scene.table().pockets().iter().enumerate() {
+        if let Some(t) = object_after.crossing(p.a, p.b) {
+            if pocket.is_none_or(|(_, best)| t < best) {
+                pocket = Some((i, t));
+            }
+        }
+    }
+    Ok(Contact {
+        object_ball: index,
+        time,
+        cue_position,
+        line_of_centres: centres,
+        cut_angle: math::atan2(v_y, v_x),
+        impact,
+        outcome,
+        cue_after,
+        object_after,
+        pocket,
+    })
+}

@@ -1,0 +1,246 @@
+//! Tables, pockets, ball sets and the scene of balls on a table (fixed capacity).
+//!
+//! Table coordinates: origin at a corner of the playing surface, `x` along its length,
+//! `y` along its width, metres. A pocket is the target segment its mouth presents to a
+//! ball **centre** (the jaws moved in by one ball radius), so "the ball reaches the
+//! pocket" means its centre crosses that segment.
+
+use crate::error::{check, Error, Field, Result};
+use crate::math;
+use crate::vector::Vec3;
+
+/// Most balls a scene holds (cue ball included).
+pub const MAX_BALLS: usize = 16;
+/// Most pockets a table has.
+pub const MAX_POCKETS: usize = 6;
+
+/// Radius and mass of a set of balls.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct BallSet {
+    /// Radius (m).
+    pub radius: f32,
+    /// Mass (kg).
+    pub mass: f32,
+}
+
+impl BallSet {
+    /// Pool: 57.15 mm, 170 g (physics-notes §5).
+    pub const POOL: Self = Self {
+        radius: 0.028575,
+        mass: 0.17,
+    };
+    /// Snooker: 52.5 mm, 142 g.
+    pub const SNOOKER: Self = Self {
+        radius: 0.02625,
+        mass: 0.142,
+    };
+    /// Carom: 61.5 mm, 210 g.
+    pub const CAROM: Self = Self {
+        radius: 0.03075,
+        mass: 0.21,
+    };
+}
+
+/// A pocket's target segment for a ball centre, from `a` to `b` (m).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Pocket {
+    /// One end of the target segment.
+    pub a: Vec3,
+    /// The other end.
+    pub b: Vec3,
+}
+
+impl Pocket {
+    /// Centre of the target segment.
+    pub fn centre(&self) -> Vec3 {
+        (self.a + self.b) * 0.5
+    }
+}
+
+/// A rectangular table with up to six pockets.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Table {
+    length: f32,
+    width: f32,
+    pockets: heapless::Vec<Pocket, MAX_POCKETS>,
+}
+
+impl Table {
+    /// A table of playing surface `length` × `width` (m, each in `(0, 10]`), with the
+    /// usual six pockets of mouth widths `corner_mouth` and `side_mouth` (m; zero for a
+    /// pocketless carom table), for balls of radius `radius`.
+    pub fn new(
+        length: f32,
+        width: f32,
+        corner_mouth: f32,
+        side_mouth: f32,
+        radius: f32,
+    ) -> Result<Self> {
+        let length = check(Field::Table, length, 0.0, 10.0, true)?;
+        let width = check(Field::Table, width, 0.0, length, true)?;
+        let corner_mouth = check(Field::Table, corner_mouth, 0.0, 0.5 * width, false)?;
+        let side_mouth = check(Field::Table, side_mouth, 0.0, 0.5 * length, false)?;
+        let mut pockets = heapless::Vec::new();
+        if corner_mouth > 0.0 {
+            // Jaws on the two rails at `corner_mouth / √2` from the corner; the segment is
+            // moved one radius in along the diagonal.
+            let jaw = corner_mouth * core::f32::consts::FRAC_1_SQRT_2;
+            let inset = radius * core::f32::consts::SQRT_2;
+            for (corner, dx, dy) in [
+                (Vec3::new(0.0, 0.0, 0.0), 1.0, 1.0),
+                (Vec3::new(length, 0.0, 0.0), -1.0, 1.0),
+                (Vec3::new(0.0, width, 0.0), 1.0, -1.0),
+                (Vec3::new(length, width, 0.0), -1.0, -1.0),
+            ] {
+                let a = corner + Vec3::new(dx * (jaw + inset), dy * inset, 0.0);
+                let b = corner + Vec3::new(dx * inset, dy * (jaw + inset), 0.0);
+                pockets
+                    .push(Pocket { a, b })
+                    .map_err(|_| Error::OutOfRange {
+                        field: Field::Table,
+                        value: 0.0,
+                    })?;
+            }
+        }
+        if side_mouth > 0.0 {
+            for (y, inward) in [(0.0, 1.0), (width, -1.0)] {
+                let y = y + inward * radius;
+                let a = Vec3::new(0.5 * (length - side_mouth), y, 0.0);
+                let b = Vec3::new(0.5 * (length + side_mouth), y, 0.0);
+                pockets
+                    .push(Pocket { a, b })
+                    .map_err(|_| Error::OutOfRange {
+                        field: Field::Table,
+                        value: 0.0,
+                    })?;
+            }
+        }
+        Ok(Self {
+            length,
+            width,
+            pockets,
+        })
+    }
+
+    /// 9-ft pool table: 2.54 × 1.27 m, corner mouths 116 mm, side mouths 130 mm.
+    pub fn pool() -> Self {
+        Self::preset(2.54, 1.27, 0.116, 0.13, BallSet::POOL.radius)
+    }
+
+    /// Full-size snooker table: 3.569 × 1.778 m, corner mouths 86 mm, middle 95 mm.
+    pub fn snooker() -> Self {
+        Self::preset(3.569, 1.778, 0.086, 0.095, BallSet::SNOOKER.radius)
+    }
+
+    /// Carom (match) table: 2.84 × 1.42 m, no pockets.
+    pub fn carom() -> Self {
+        Self::preset(2.84, 1.42, 0.0, 0.0, BallSet::CAROM.radius)
+    }
+
+    fn preset(length: f32, width: f32, corner: f32, side: f32, radius: f32) -> Self {
+        // The presets satisfy `new`'s checks; fall back to a pocketless table rather
+        // than panic if that ever changed.
+        Self::new(length, width, corner, side, radius).unwrap_or(Self {
+            length,
+            width,
+            pockets: heapless::Vec::new(),
+        })
+    }
+
+    /// Length (m).
+    pub const fn length(&self) -> f32 {
+        self.length
+    }
+    /// Width (m).
+    pub const fn width(&self) -> f32 {
+        self.width
+    }
+    /// The pockets.
+    pub fn pockets(&self) -> &[Pocket] {
+        &self.pockets
+    }
+
+    /// `true` when a ball of `radius` centred at `p` lies on the playing surface.
+    pub fn contains(&self, p: Vec3, radius: f32) -> bool {
+        p.x >= radius && p.x <= self.length - radius && p.y >= radius && p.y <= self.width - radius
+    }
+}
+
+/// Balls at rest on a table: index 0 is the cue ball.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    table: Table,
+    balls: heapless::Vec<Vec3, MAX_BALLS>,
+    radius: f32,
+}
+
+impl Scene {
+    /// A scene on `table` for balls of `radius` (m), with the cue ball at `cue_ball`.
+    pub fn new(table: Table, radius: f32, cue_ball: [f32; 2]) -> Result<Self> {
+        let radius = check(Field::Radius, radius, 0.001, 1.0, false)?;
+        let mut scene = Self {
+            table,
+            balls: heapless::Vec::new(),
+            radius,
+        };
+        scene.add_ball(cue_ball)?;
+        Ok(scene)
+    }
+
+    /// Place another ball; returns its index. Errors: off the table or overlapping a
+    /// ball ([`Field::Position`]), or more than [`MAX_BALLS`] ([`Field::BallCount`]).
+    pub fn add_ball(&mut self, position: [f32; 2]) -> Result<usize> {
+        let x = check(Field::Position, position[0], -1e3, 1e3, false)?;
+        let y = check(Field::Position, position[1], -1e3, 1e3, false)?;
+        let p = Vec3::new(x, y, 0.0);
+        if !self.table.contains(p, self.radius) {
+            return Err(Error::OutOfRange {
+                field: Field::Position,
+                value: x,
+            });
+        }
+        for other in &self.balls {
+            if (*other - p).length() < 2.0 * self.radius * (1.0 - 1e-6) {
+                return Err(Error::OutOfRange {
+                    field: Field::Position,
+                    value: x,
+                });
+            }
+        }
+        self.balls.push(p).map_err(|_| Error::OutOfRange {
+            field: Field::BallCount,
+            value: (MAX_BALLS + 1) as f32,
+        })?;
+        Ok(self.balls.len() - 1)
+    }
+
+    /// The table.
+    pub fn table(&self) -> &Table {
+        &self.table
+    }
+    /// Ball centres (index 0: cue ball).
+    pub fn balls(&self) -> &[Vec3] {
+        &self.balls
+    }
+    /// Ball radius (m).
+    pub const fn radius(&self) -> f32 {
+        self.radius
+    }
+
+    /// Distance the cue ball's centre travels along the unit direction `aim` before it
+    /// touches ball `index` (`None` if the line misses it or the ball is behind).
+    pub fn contact_distance(&self, aim: Vec3, index: usize) -> Option<f32> {
+        let (cue, target) = (*self.balls.first()?, *self.balls.get(index)?);
+        let to_target = target - cue;
+        let along = to_target.dot(aim);
+        let across = to_target.x * aim.y - to_target.y * aim.x;
+        let reach = 2.0 * self.radius;
+        let gap = reach * reach - across * across;
+        if along <= 0.0 || gap < 0.0 {
+            return None;
+        }
+        Some(math::max(along - math::sqrt(gap), 0.0))
+    }
+}
