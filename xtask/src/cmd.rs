@@ -74,6 +74,36 @@ pub fn run(cmd: &mut Command) -> Result {
     check(&shown, status)
 }
 
+/// As [`run`], but kills `cmd` and fails with code 124 (as coreutils' `timeout`) if it
+/// has not finished after `limit`.
+pub fn run_with_timeout(cmd: &mut Command, limit: std::time::Duration) -> Result {
+    if cmd.get_current_dir().is_none() {
+        cmd.current_dir(root());
+    }
+    let shown = display(cmd);
+    println!("$ {shown}   (timeout {} s)", limit.as_secs());
+    let mut child = cmd
+        .spawn()
+        .map_err(|e| Failure::new(format!("cannot start `{shown}`: {e}")))?;
+    let deadline = std::time::Instant::now() + limit;
+    loop {
+        match child.try_wait() {
+            Ok(Some(status)) => return check(&shown, status),
+            Ok(None) if std::time::Instant::now() < deadline => {
+                std::thread::sleep(std::time::Duration::from_millis(50))
+            }
+            _ => {
+                let _ = child.kill();
+                let _ = child.wait();
+                return Err(Failure {
+                    message: format!("`{shown}` did not finish within {} s", limit.as_secs()),
+                    code: 124,
+                });
+            }
+        }
+    }
+}
+
 /// Turns a non-zero exit into a [`Failure`] carrying the same code.
 pub fn check(shown: &str, status: ExitStatus) -> Result {
     if status.success() {

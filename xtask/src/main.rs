@@ -1,13 +1,17 @@
 //! `cargo xtask`: the project's automation, in Rust so it needs nothing but cargo.
 //!
-//! * `cargo xtask run`  — build the firmware and boot it in QEMU, log decoded by defmt-print.
+//! * `cargo xtask run`  — build the firmware, boot it in QEMU and play the demo session
+//!   (`firmware/demo/session.jsonl`) over its serial port; `--interactive` lets a person
+//!   type the requests. The decoded defmt log follows the session.
 //! * `cargo xtask test` — every check: host fmt/clippy/tests, core for the target,
-//!   firmware fmt/clippy/build, and the QEMU run.
+//!   firmware fmt/clippy/build and size, the demo session and the end-to-end test in
+//!   QEMU.
 //!
 //! Both install what they need first (rustup target and components, QEMU, defmt-print).
 
 mod cmd;
 mod qemu;
+mod size;
 mod test;
 mod tools;
 
@@ -29,9 +33,16 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Build the firmware (release) and run it in QEMU (mps2-an386), decoding its defmt log.
+    /// Build the firmware (release), boot it in QEMU (mps2-an386) and play a session of
+    /// requests over its serial port; the decoded defmt log follows.
     Run {
-        /// Kill QEMU after this many seconds and fail.
+        /// Type the requests yourself (stdin to the serial port; Ctrl-D ends).
+        #[arg(long, conflicts_with = "session")]
+        interactive: bool,
+        /// The session to play, one JSON request per line [default: firmware/demo/session.jsonl].
+        #[arg(long, value_name = "FILE")]
+        session: Option<std::path::PathBuf>,
+        /// Kill QEMU after this many seconds and fail (not with --interactive).
         #[arg(long, default_value_t = qemu::DEFAULT_TIMEOUT_SECS)]
         timeout: u64,
     },
@@ -46,8 +57,21 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Run { timeout } => tools::ensure_for_qemu()
-            .and_then(|()| qemu::build_and_run(Duration::from_secs(timeout))),
+        Command::Run {
+            interactive,
+            session,
+            timeout,
+        } => tools::ensure_for_qemu()
+            .and_then(|()| qemu::build_release())
+            .and_then(|()| {
+                let elf = qemu::elf_path();
+                if interactive {
+                    qemu::run_interactive(&elf)
+                } else {
+                    let session = session.unwrap_or_else(qemu::demo_session);
+                    qemu::run_session(&elf, &session, Duration::from_secs(timeout))
+                }
+            }),
         Command::Test { keep_going } => test::run_all(keep_going),
     };
     match result {

@@ -1,32 +1,29 @@
-//! Boot the firmware in QEMU and decode its defmt log.
+//! Boot the firmware in QEMU and talk to it: a scripted session (`cargo xtask run`),
+//! or requests typed by a person (`cargo xtask run --interactive`).
 //!
-//! The firmware writes defmt frames to semihosting stdout, which QEMU
-//! (`-semihosting-config enable=on,target=native`) forwards to its own stdout; that
-//! is piped into `defmt-print -e <elf>`, which turns the frames back into text with
-//! the format strings stored in the ELF. QEMU's exit code is the firmware's verdict.
+//! QEMU's stdio is the firmware's UART0 (the protocol, one JSON line each way); the
+//! firmware's defmt frames arrive on QEMU's stderr and go through `defmt-print -e <elf>`
+//! (the harness is `cuesight_host::firmware`). The decoded log is printed after the
+//! session, so it never interleaves with the requests and answers, and is also written
+//! to `target/xtask/firmware.log`. QEMU's exit code is the firmware's verdict.
 
-use std::io::{BufRead, BufReader};
+use std::io::{BufRead, Write};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
-use std::thread;
 use std::time::{Duration, Instant};
+
+use cuesight_host::firmware::{qemu_command, Ended, Firmware, FirmwareError};
+use cuesight_protocol::{Answer, Summary};
 
 use crate::cmd::{self, Failure, Result};
 use crate::tools;
 
-/// Default limit for one QEMU run; the firmware itself needs well under a second.
+/// Default limit for a scripted session.
 pub const DEFAULT_TIMEOUT_SECS: u64 = 60;
 
 /// Exit code for a timed-out run, as coreutils' `timeout` uses.
 const TIMEOUT_EXIT: u8 = 124;
 
 const FIRMWARE_BIN: &str = "cuesight-firmware";
-
-/// Builds the firmware in release and runs it (QEMU and defmt-print must be present).
-pub fn build_and_run(timeout: Duration) -> Result {
-    build_release()?;
-    run(&elf_path(), timeout)
-}
 
 /// `cargo build --release` in `firmware/`.
 pub fn build_release() -> Result {
@@ -49,99 +46,192 @@ pub fn elf_path() -> PathBuf {
         .join(FIRMWARE_BIN)
 }
 
-/// Runs `elf` in QEMU with its stdout piped through defmt-print; kills QEMU and fails
-/// after `timeout`. Fails with QEMU's exit code if it is not 0, and also when nothing
-/// was decoded (a silent firmware is a broken one).
-pub fn run(elf: &Path, timeout: Duration) -> Result {
+/// The checked-in demo session.
+pub fn demo_session() -> PathBuf {
+    cmd::firmware_dir().join("demo").join("session.jsonl")
+}
+
+fn boot(elf: &Path) -> Result<Firmware> {
     let defmt_print = tools::defmt_print()?;
-    let mut qemu = Command::new("qemu-system-arm");
-    qemu.args(["-machine", "mps2-an386", "-cpu", "cortex-m4", "-nographic"])
-        .args(["-semihosting-config", "enable=on,target=native"])
-        .arg("-kernel")
-        .arg(elf);
-    let mut decoder = Command::new(&defmt_print);
-    decoder.arg("-e").arg(elf);
-    let shown = format!("{} | {}", cmd::display(&qemu), cmd::display(&decoder));
-    println!("$ {shown}   (timeout {} s)", timeout.as_secs());
-
-    let mut qemu_child = qemu
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .spawn()
-        .map_err(|e| Failure::new(format!("cannot start qemu-system-arm: {e}")))?;
-    let qemu_out = qemu_child.stdout.take().expect("stdout is piped");
-    let mut decoder_child = match decoder.stdin(qemu_out).stdout(Stdio::piped()).spawn() {
-        Ok(child) => child,
-        Err(e) => {
-            kill(&mut qemu_child);
-            return Err(Failure::new(format!(
-                "cannot start {}: {e}",
-                defmt_print.display()
-            )));
-        }
-    };
-    // Forward the decoded log line by line, counting the lines.
-    let decoded = decoder_child.stdout.take().expect("stdout is piped");
-    let forwarder = thread::spawn(move || {
-        let mut lines = 0usize;
-        for line in BufReader::new(decoded)
-            .lines()
-            .map_while(std::io::Result::ok)
-        {
-            println!("{line}");
-            lines += 1;
-        }
-        lines
-    });
-
-    let qemu_status = match wait_with_timeout(&mut qemu_child, timeout) {
-        Some(status) => status,
-        None => {
-            kill(&mut qemu_child);
-            kill(&mut decoder_child);
-            return Err(Failure {
-                message: format!(
-                    "QEMU did not exit within {} s and was killed",
-                    timeout.as_secs()
-                ),
-                code: TIMEOUT_EXIT,
-            });
-        }
-    };
-    // QEMU's end closes the pipe; defmt-print then drains it and exits.
-    let decoder_status = wait_with_timeout(&mut decoder_child, Duration::from_secs(10));
-    if decoder_status.is_none() {
-        kill(&mut decoder_child);
-    }
-    let lines = forwarder.join().unwrap_or(0);
-
-    cmd::check("qemu-system-arm", qemu_status)?;
-    match decoder_status {
-        Some(status) => cmd::check("defmt-print", status)?,
-        None => return Err(Failure::new("defmt-print did not exit after QEMU did")),
-    }
-    if lines == 0 {
-        return Err(Failure::new(
-            "QEMU exited 0 but defmt-print decoded no log line",
-        ));
-    }
-    println!("xtask: firmware exited 0 under QEMU ({lines} log lines)");
-    Ok(())
+    println!(
+        "$ {}\n  (UART0 on stdio; the defmt log on stderr, through {} -e <elf>)",
+        cmd::display(&qemu_command(elf)),
+        defmt_print.display(),
+    );
+    Firmware::boot(elf, Some(&defmt_print))
+        .map_err(|e| Failure::new(format!("cannot boot the firmware in QEMU: {e}")))
 }
 
-/// Polls `child` until it exits or `timeout` passes (`None`).
-fn wait_with_timeout(child: &mut Child, timeout: Duration) -> Option<std::process::ExitStatus> {
+/// Plays `session` (one request per line; `#` lines are headings, `##` lines comments)
+/// against the firmware and prints each request with a one-line summary of its answer.
+/// Fails on a missing or unparseable answer, a non-zero QEMU exit, or after `timeout`
+/// (code 124).
+pub fn run_session(elf: &Path, session: &Path, timeout: Duration) -> Result {
+    let text = std::fs::read_to_string(session)
+        .map_err(|e| Failure::new(format!("reading {}: {e}", session.display())))?;
     let deadline = Instant::now() + timeout;
-    loop {
-        match child.try_wait() {
-            Ok(Some(status)) => return Some(status),
-            Ok(None) if Instant::now() < deadline => thread::sleep(Duration::from_millis(20)),
-            Ok(None) | Err(_) => return None,
+    println!(
+        "xtask: playing {} (timeout {} s)",
+        session.display(),
+        timeout.as_secs()
+    );
+    let mut fw = boot(elf)?;
+    let mut answered = 0usize;
+    let mut shut_down = false;
+    for line in text.lines() {
+        let line = line.trim_end();
+        if line.starts_with("##") {
+            continue; // a comment about the file
         }
+        if let Some(heading) = line.strip_prefix('#') {
+            println!("\n== {}", heading.trim());
+            continue;
+        }
+        if line.trim().is_empty() {
+            continue;
+        }
+        println!("> {line}");
+        let left = deadline.saturating_duration_since(Instant::now());
+        let answer = match fw.request(line.as_bytes(), left) {
+            Ok(answer) => answer,
+            Err(error) => return Err(session_failure(fw, error, deadline)),
+        };
+        answered += 1;
+        match serde_json::from_str::<Answer>(&answer) {
+            Ok(parsed) => {
+                println!("< {}", Summary(&parsed));
+                shut_down = matches!(parsed, Answer::Shutdown(_));
+            }
+            Err(e) => {
+                println!("< {answer}");
+                return Err(Failure::new(format!("unparseable answer ({e}): {answer}")));
+            }
+        }
+        if shut_down {
+            break;
+        }
+    }
+    if !shut_down {
+        println!("> {{\"shutdown\":{{}}}}   (end of the session file)");
+        let left = deadline.saturating_duration_since(Instant::now());
+        match fw.request(b"{\"shutdown\":{}}", left) {
+            Ok(answer) => println!("< {answer}"),
+            Err(error) => return Err(session_failure(fw, error, deadline)),
+        }
+    }
+    let ended = fw.wait(deadline.saturating_duration_since(Instant::now()));
+    print_log(&ended);
+    finish(&ended, &format!("{answered} requests answered"))
+}
+
+/// A person types requests; each answer is printed raw and summarised. End of input
+/// (Ctrl-D) sends `shutdown`; so does typing it. No timeout.
+pub fn run_interactive(elf: &Path) -> Result {
+    let mut fw = boot(elf)?;
+    let mut port = fw
+        .take_serial_in()
+        .ok_or_else(|| Failure::new("no serial input"))?;
+    println!(
+        "xtask: type one request per line, e.g.\n  \
+         {{\"collide\":{{\"speed\":2,\"cut\":30,\"spin\":[0,40,0]}}}}\n  \
+         {{\"params\":{{\"mu\":0.06}}}}   {{\"version\":{{}}}}   {{\"shutdown\":{{}}}}\n\
+         (docs/protocol.md has them all); Ctrl-D ends the session, the log follows."
+    );
+    std::thread::spawn(move || {
+        let stdin = std::io::stdin();
+        for line in stdin.lock().lines().map_while(std::io::Result::ok) {
+            if port.write_all(line.as_bytes()).is_err() || port.write_all(b"\n").is_err() {
+                return;
+            }
+        }
+        let _ = port.write_all(b"{\"shutdown\":{}}\n");
+    });
+    loop {
+        match fw.answer(Duration::from_secs(24 * 3600)) {
+            Ok(answer) => {
+                println!("< {answer}");
+                match serde_json::from_str::<Answer>(&answer) {
+                    Ok(parsed) => {
+                        println!("  {}", Summary(&parsed));
+                        if matches!(parsed, Answer::Shutdown(_)) {
+                            break;
+                        }
+                    }
+                    Err(e) => println!("  (unparseable: {e})"),
+                }
+            }
+            Err(FirmwareError::Closed) => break,
+            Err(e) => return Err(Failure::new(e.to_string())),
+        }
+    }
+    let ended = fw.wait(Duration::from_secs(10));
+    print_log(&ended);
+    finish(&ended, "session over")
+}
+
+/// Builds the failure for a session that stopped answering, with the log so far.
+fn session_failure(fw: Firmware, error: FirmwareError, deadline: Instant) -> Failure {
+    let timed_out = matches!(error, FirmwareError::Timeout(_)) || Instant::now() >= deadline;
+    let ended = fw.wait(Duration::from_secs(1));
+    print_log(&ended);
+    match ended.status {
+        Some(status) if !timed_out => Failure {
+            message: format!("the firmware stopped answering ({error}); QEMU ended with {status}"),
+            code: status
+                .code()
+                .and_then(|c| u8::try_from(c).ok())
+                .filter(|&c| c != 0)
+                .unwrap_or(1),
+        },
+        _ => Failure {
+            message: format!("no answer in time ({error}); QEMU was killed"),
+            code: TIMEOUT_EXIT,
+        },
     }
 }
 
-fn kill(child: &mut Child) {
-    let _ = child.kill();
-    let _ = child.wait();
+fn log_file() -> PathBuf {
+    cmd::root()
+        .join("target")
+        .join("xtask")
+        .join("firmware.log")
+}
+
+fn print_log(ended: &Ended) {
+    let path = log_file();
+    let written = path
+        .parent()
+        .is_some_and(|dir| std::fs::create_dir_all(dir).is_ok())
+        && std::fs::write(&path, ended.log.join("\n") + "\n").is_ok();
+    println!(
+        "\n== firmware log (defmt over semihosting, {} lines{})",
+        ended.log.len(),
+        if written {
+            format!(", also in {}", path.display())
+        } else {
+            String::new()
+        }
+    );
+    for line in &ended.log {
+        println!("{line}");
+    }
+}
+
+fn finish(ended: &Ended, what: &str) -> Result {
+    match ended.status {
+        None => Err(Failure {
+            message: "QEMU did not exit after the session and was killed".into(),
+            code: TIMEOUT_EXIT,
+        }),
+        Some(status) => {
+            cmd::check("qemu-system-arm", status)?;
+            if ended.log.is_empty() {
+                return Err(Failure::new(
+                    "QEMU exited 0 but defmt-print decoded no log line",
+                ));
+            }
+            println!("xtask: {what}; the firmware exited 0 under QEMU");
+            Ok(())
+        }
+    }
 }

@@ -4,7 +4,7 @@
 use std::time::{Duration, Instant};
 
 use crate::cmd::{self, Failure, Result};
-use crate::{qemu, tools};
+use crate::{qemu, size, tools};
 
 /// One check: a title and what it runs.
 struct Step {
@@ -68,17 +68,40 @@ const STEPS: &[Step] = &[
         action: qemu::build_release,
     },
     Step {
-        title: "firmware: run in QEMU",
-        action: run_in_qemu,
+        title: "firmware: release image size",
+        action: || size::report(&qemu::elf_path()),
+    },
+    Step {
+        title: "firmware: demo session in QEMU",
+        action: demo_session,
+    },
+    Step {
+        title: "firmware: end-to-end test in QEMU",
+        action: end_to_end,
     },
 ];
 
-fn run_in_qemu() -> Result {
+fn demo_session() -> Result {
     tools::ensure_qemu()?;
-    qemu::run(
+    qemu::run_session(
         &qemu::elf_path(),
+        &qemu::demo_session(),
         Duration::from_secs(qemu::DEFAULT_TIMEOUT_SECS),
     )
+}
+
+/// `host-tests/tests/e2e.rs`, `#[ignore]`d in plain `cargo test` because it needs the
+/// firmware just built; QEMU is wrapped in the test's own deadlines, and the whole
+/// test in a 10-minute limit here.
+fn end_to_end() -> Result {
+    tools::ensure_qemu()?;
+    let defmt_print = tools::defmt_print()?;
+    let mut test = cmd::cargo();
+    test.args(["test", "-p", "cuesight-host", "--test", "e2e", "--"])
+        .args(["--ignored", "--nocapture"])
+        .env("CUESIGHT_FIRMWARE_ELF", qemu::elf_path())
+        .env("DEFMT_PRINT", defmt_print);
+    cmd::run_with_timeout(&mut test, Duration::from_secs(600))
 }
 
 /// Runs every step (see [`STEPS`]).

@@ -1,0 +1,72 @@
+//! Flash and static RAM of the release image, from the ELF's section headers (what
+//! `size`/`llvm-size` report as text, data and bss), so no binutils are needed.
+
+use std::path::Path;
+
+use crate::cmd::{Failure, Result};
+
+const SHF_WRITE: u32 = 0x1;
+const SHF_ALLOC: u32 = 0x2;
+const SHT_NOBITS: u32 = 8;
+
+/// Berkeley-style sizes of a 32-bit little-endian ELF.
+#[derive(Debug, Default, PartialEq, Eq)]
+pub struct Sizes {
+    /// Read-only allocated sections (vector table, code, constants): flash only.
+    pub text: u64,
+    /// Initialised writable data: in flash, copied to RAM at boot.
+    pub data: u64,
+    /// Zero-initialised and uninitialised RAM.
+    pub bss: u64,
+}
+
+fn u16_at(bytes: &[u8], at: usize) -> Option<u16> {
+    Some(u16::from_le_bytes(bytes.get(at..at + 2)?.try_into().ok()?))
+}
+
+fn u32_at(bytes: &[u8], at: usize) -> Option<u32> {
+    Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?))
+}
+
+/// Sums the allocated sections of an ELF32 image.
+pub fn sizes(elf: &[u8]) -> Option<Sizes> {
+    if elf.get(..5)? != b"\x7fELF\x01" {
+        return None; // not a 32-bit ELF
+    }
+    let shoff = u32_at(elf, 0x20)? as usize;
+    let shentsize = usize::from(u16_at(elf, 0x2e)?);
+    let shnum = usize::from(u16_at(elf, 0x30)?);
+    let mut sizes = Sizes::default();
+    for i in 0..shnum {
+        let header = shoff + i * shentsize;
+        let kind = u32_at(elf, header + 4)?;
+        let flags = u32_at(elf, header + 8)?;
+        let size = u64::from(u32_at(elf, header + 20)?);
+        if flags & SHF_ALLOC == 0 {
+            continue;
+        }
+        if kind == SHT_NOBITS {
+            sizes.bss += size;
+        } else if flags & SHF_WRITE != 0 {
+            sizes.data += size;
+        } else {
+            sizes.text += size;
+        }
+    }
+    Some(sizes)
+}
+
+/// Prints the sizes of `elf`.
+pub fn report(elf: &Path) -> Result {
+    let bytes =
+        std::fs::read(elf).map_err(|e| Failure::new(format!("reading {}: {e}", elf.display())))?;
+    let s = sizes(&bytes).ok_or_else(|| Failure::new("not a 32-bit ELF"))?;
+    println!("   text    data     bss  file");
+    println!("{:7} {:7} {:7}  {}", s.text, s.data, s.bss, elf.display());
+    println!(
+        "flash {} bytes (text + data), static RAM {} bytes (data + bss; the stack takes the rest of RAM)",
+        s.text + s.data,
+        s.data + s.bss
+    );
+    Ok(())
+}
