@@ -9,8 +9,8 @@
 //!   impact; [`estimate_with_pitch`] / [`estimate_raw_with_pitch`] also take the gyro's
 //!   pitch rate and remove the gravity error of a cue that tilts during the stroke;
 //!   [`StrokeEstimate::strike`] feeds the speed to the cue-strike model
-//!   ([`cuesight::strike`], TP A.30) for ball speed and spin. [`ImpactTrigger`] tells the
-//!   capture loop when to stop.
+//!   ([`cuesight::strike`], TP A.30) for ball speed and spin.
+//! * [`trigger`]: [`ImpactTrigger`] tells the capture loop when the ring holds the stroke.
 //!
 //! Measured accuracy and the models behind it: `docs/sensors.md`.
 //!
@@ -48,6 +48,7 @@
 pub mod lsm6dsox;
 pub mod ring;
 pub mod stroke;
+pub mod trigger;
 
 pub use lsm6dsox::{
     accel_lsb_to_mps2, gyro_lsb_to_radps, Axis, ImuSample, Lsm6dsox, RawSample, ACCEL_MPS2_PER_LSB,
@@ -56,5 +57,6 @@ pub use lsm6dsox::{
 pub use ring::RingBuffer;
 pub use stroke::{
     estimate, estimate_raw, estimate_raw_with_pitch, estimate_with_pitch, ConfigField,
-    ImpactTrigger, StrokeConfig, StrokeError, StrokeEstimate,
+    StrokeConfig, StrokeError, StrokeEstimate,
 };
+pub use trigger::ImpactTrigger;
