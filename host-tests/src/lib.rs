@@ -6,3 +6,4 @@ pub mod firmware;
 pub mod grid;
 pub mod reference;
 pub mod report;
+pub mod timed;
