@@ -6,4 +6,5 @@ pub mod firmware;
 pub mod grid;
 pub mod reference;
 pub mod report;
+pub mod strokes;
 pub mod timed;

@@ -5,11 +5,13 @@
 //!    host's own `Collide::prepare` + `cuesight::collide` (f32 against f32):
 //!    `|a − b| ≤ 1e-5·max(|a|, |b|) + 1e-6`, the absolute floor of 1e-6 in the field's
 //!    unit (m/s, rad/s, N·s, degrees) covering components that are zero up to rounding.
-//! 2. ≥ 1,000 seeded malformed lines (bad JSON, truncated, overlong, unknown requests
+//! 2. Four synthetic strokes sent in `stroke` chunks, each answer compared with the
+//!    host's own protocol session on the same lines (same tolerance).
+//! 3. ≥ 1,000 seeded malformed lines (bad JSON, truncated, overlong, unknown requests
 //!    and fields, NaN/inf/out-of-range values, wrong types, random bytes), streamed
 //!    back to back: each must get exactly one `{"error":...}` answer of the expected
 //!    kind, and a valid request sent after them must get its normal answer.
-//! 3. `shutdown`: the session counters match and QEMU exits 0.
+//! 4. `shutdown`: the session counters match and QEMU exits 0.
 //!
 //! Needs the release firmware and QEMU, so it is `#[ignore]`d in a plain `cargo test`;
 //! `cargo xtask test` builds the firmware and runs it:
@@ -23,9 +25,10 @@ use std::time::{Duration, Instant};
 use cuesight::Model;
 use cuesight_host::firmware::{self, Firmware};
 use cuesight_host::grid;
+use cuesight_host::strokes::{stroke_requests, synthetic_stroke};
 use cuesight_protocol::{
-    Answer, Collide, CollideAnswer, Defaults, ErrorKind, ModelName, Overrides, Request, Spin,
-    MAX_LINE,
+    Answer, AnswerLine, Collide, CollideAnswer, Defaults, ErrorKind, Identity, ModelName,
+    Overrides, Request, Session, Spin, MAX_LINE, MAX_SAMPLES,
 };
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -35,6 +38,13 @@ const ATOL: f64 = 1e-6;
 const COLLIDES: usize = 250;
 const MALFORMED: usize = 1200;
 const ANSWER_TIMEOUT: Duration = Duration::from_secs(30);
+/// Synthetic strokes: (seed, sample rate in Hz, cue speed at impact in m/s).
+const STROKES: [(u64, f64, f64); 4] = [
+    (11, 6667.0, 1.5),
+    (12, 6667.0, 3.0),
+    (13, 3333.0, 5.0),
+    (14, 1000.0, 0.8),
+];
 
 /// The seeded collide requests: grid scenes as speed and cut angle, cycling through the
 /// core's models; every 7th with natural roll, every 5th with TP A.14's speed-dependent
@@ -293,7 +303,7 @@ fn malformed_lines() -> Vec<Bad> {
                     r#"{"params":{"mu":true}}"#,
                     r#"{"collide":"fast"}"#,
                     r#"{"version":[]}"#,
-                    r#"{"stroke":{"rate_hz":3333,"full_scale_g":16,"samples":[[1,2]]}}"#,
+                    r#"{"stroke":{"rate_hz":3333,"samples":[[1,2]]}}"#,
                 ][rng.random_range(0..10)];
                 Bad {
                     category: "wrong type",
@@ -442,7 +452,57 @@ fn firmware_in_qemu_agrees_with_the_host_core_and_survives_malformed_input() {
         }
     );
 
-    // 2. Malformed lines, streamed back to back, then one valid request.
+    // 2. Strokes in chunks, against the host's own protocol session (the same estimator
+    //    and strike model, compiled for the host) and the speed that generated them.
+    let mut host = Session::new(Identity {
+        firmware: "host",
+        board: "host",
+    });
+    let mut out = AnswerLine::new();
+    let (mut stroke_lines, mut strokes, mut max_truth_error) = (0usize, 0usize, 0.0f64);
+    let t = Instant::now();
+    for (seed, rate, speed) in STROKES {
+        let stroke = synthetic_stroke(seed, rate, speed);
+        for request in stroke_requests(&stroke, MAX_SAMPLES) {
+            let line = serde_json::to_vec(&request).unwrap();
+            let got = parse(&fw.request(&line, ANSWER_TIMEOUT).unwrap());
+            host.serve_line(&line, &mut out).unwrap();
+            let want = parse(std::str::from_utf8(&out).unwrap().trim_end());
+            stroke_lines += 1;
+            match (&got, &want) {
+                (Answer::StrokeChunk(a), Answer::StrokeChunk(b)) => assert_eq!(a, b),
+                (Answer::Stroke(a), Answer::Stroke(b)) => {
+                    let pairs = [
+                        (a.cue_speed, b.cue_speed),
+                        (a.ball_speed, b.ball_speed),
+                        (a.ball_spin[1], b.ball_spin[1]),
+                        (a.stroke_duration, b.stroke_duration),
+                        (a.rest_noise, b.rest_noise),
+                    ];
+                    for (x, y) in pairs.map(|(x, y)| (f64::from(x), f64::from(y))) {
+                        let scale = x.abs().max(y.abs());
+                        assert!((x - y).abs() <= RTOL * scale + ATOL, "{a:?} vs {b:?}");
+                        if scale > ATOL {
+                            max_rel = max_rel.max((x - y).abs() / scale);
+                        }
+                    }
+                    assert_eq!((a.samples, a.impact_index), (b.samples, b.impact_index));
+                    let truth = (f64::from(a.cue_speed) - speed).abs() / speed;
+                    max_truth_error = max_truth_error.max(truth);
+                    strokes += 1;
+                }
+                _ => panic!("stroke answers differ: firmware {got:?}, host {want:?}"),
+            }
+        }
+    }
+    println!(
+        "e2e: {strokes} strokes in {stroke_lines} chunk requests: firmware = host session (max relative error \
+         {max_rel:.3e} over collide and stroke numbers); cue speed within {:.2} % of the generating speed; {:.2} s",
+        100.0 * max_truth_error,
+        t.elapsed().as_secs_f64()
+    );
+
+    // 3. Malformed lines, streamed back to back, then one valid request.
     let bad = malformed_lines();
     let sentinel = br#"{"collide":{"speed":2,"cut":30,"spin":[0,40,0],"mu":0.06}}"#;
     let mut stream = Vec::new();
@@ -494,13 +554,13 @@ fn firmware_in_qemu_agrees_with_the_host_core_and_survives_malformed_input() {
     println!("e2e:   by error kind: {per_kind:?}");
     assert!(bad.len() >= 1000);
 
-    // 3. Shutdown: counters, then QEMU exits 0.
+    // 4. Shutdown: counters, then QEMU exits 0.
     port.write_all(b"{\"shutdown\":{}}\n").unwrap();
     drop(port);
     let Answer::Shutdown(stats) = parse(&fw.answer(ANSWER_TIMEOUT).unwrap()) else {
         panic!("no shutdown answer")
     };
-    let total = 1 + requests.len() + bad.len() + 1 + 1;
+    let total = 1 + requests.len() + stroke_lines + bad.len() + 1 + 1;
     assert_eq!(stats.requests as usize, total);
     assert_eq!(stats.errors as usize, bad.len());
     let ended = fw.wait(Duration::from_secs(30));

@@ -23,8 +23,10 @@ pub enum Answer {
     Collide(CollideAnswer),
     /// To `params`: the session defaults now in force.
     Params(ParamsAnswer),
-    /// To `stroke`.
+    /// To the last chunk of a `stroke`: the estimate.
     Stroke(StrokeAnswer),
+    /// To a `stroke` chunk with `"more":true`: the samples held so far.
+    StrokeChunk(StrokeChunkAnswer),
     /// To `version`.
     Version(VersionAnswer),
     /// To `shutdown`, just before the firmware exits.
@@ -208,18 +210,35 @@ impl From<&Defaults> for ParamsAnswer {
     }
 }
 
-/// A stroke estimate (answer to `stroke`): the cue speed at the tip impact and the
-/// cue ball it produces (TP A.30), in the ball's travel frame (`x` along the cue).
+/// A stroke estimate (answer to the last `stroke` chunk): the cue speed at the tip
+/// impact (`cuesight_sensors::estimate_raw`) and the cue ball it produces
+/// (`cuesight::strike`, TP A.30) with the session's ball, in the ball's travel frame
+/// (`x` along the cue, `z` up; follow `w.y > 0`, right english `w.z > 0`).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct StrokeAnswer {
     /// Estimated cue speed just before the tip impact (m/s).
     pub cue_speed: f32,
     /// Cue-ball speed after the strike (m/s).
     pub ball_speed: f32,
-    /// Cue-ball angular velocity after the strike (rad/s), travel frame.
+    /// Cue-ball angular velocity after the strike (rad/s).
     pub ball_spin: [f32; 3],
-    /// Number of samples used.
+    /// Samples in the window (all chunks).
     pub samples: u32,
+    /// Index of the first sample touched by the impact.
+    pub impact_index: u32,
+    /// Integration time from the end of the rest to the impact (s).
+    pub stroke_duration: f32,
+    /// Standard deviation of the rest window (m/s²): the sensor noise as seen.
+    pub rest_noise: f32,
+}
+
+/// Samples held so far (answer to a `stroke` chunk with `"more":true`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StrokeChunkAnswer {
+    /// Samples received for the stroke in progress.
+    pub samples: u32,
+    /// [`crate::STROKE_CAPACITY`].
+    pub capacity: u32,
 }
 
 /// Versions and limits (answer to `version`).
@@ -233,8 +252,10 @@ pub struct VersionAnswer {
     pub board: Name,
     /// Longest request line accepted, in bytes without the newline ([`crate::MAX_LINE`]).
     pub max_line: u32,
-    /// Most samples in one `stroke` request ([`crate::MAX_SAMPLES`]).
+    /// Most samples in one `stroke` chunk ([`crate::MAX_SAMPLES`]).
     pub max_samples: u32,
+    /// Most samples in one stroke, all chunks ([`crate::STROKE_CAPACITY`]).
+    pub stroke_capacity: u32,
 }
 
 /// Session statistics (answer to `shutdown`).

@@ -103,7 +103,7 @@ const BOOL: &str = "true or false";
 const MODEL: &str = "a model name (a string)";
 const OBJECT: &str = "an object of the request's fields";
 const EMPTY: &str = "an empty object {}";
-const SAMPLES: &str = "an array of [ax, ay, az] samples, integers in -32768..=32767";
+const SAMPLES: &str = "an array of raw samples, integers in -32768..=32767";
 const TIP: &str = "[side, height], two numbers (m)";
 
 struct RequestSeed<'d> {
@@ -312,17 +312,14 @@ impl Body for Collide {
 impl Body for Stroke {
     const NAME: &'static str = "stroke";
     const EXPECTED: &'static str =
-        "rate_hz, full_scale_g, samples, tip_offset, cue_mass, tip_restitution";
+        "samples, more, rate_hz, scale, tip_offset, cue_mass, tip_restitution";
 
     fn read<'de, A: MapAccess<'de>>(mut map: A, diag: &mut Diag) -> Result<Self, A::Error> {
-        let (mut rate_hz, mut full_scale_g, mut samples) = (None, None, None);
-        let (mut tip_offset, mut cue_mass, mut tip_restitution) = (None, None, None);
+        let (mut samples, mut more) = (None, None);
+        let (mut rate_hz, mut scale, mut tip_offset) = (None, None, None);
+        let (mut cue_mass, mut tip_restitution) = (None, None);
         while let Some(key) = map.next_key::<&str>()? {
             match key {
-                "rate_hz" => diag.value(&mut map, "rate_hz", NUMBER, &mut rate_hz)?,
-                "full_scale_g" => {
-                    diag.value(&mut map, "full_scale_g", NUMBER, &mut full_scale_g)?
-                }
                 "samples" => {
                     if samples.is_some() {
                         return Err(diag.fail(Problem::DuplicateField("samples")));
@@ -331,6 +328,9 @@ impl Body for Stroke {
                     samples = Some(map.next_value_seed(SamplesSeed { diag: &mut *diag })?);
                     diag.at = None;
                 }
+                "more" => diag.value(&mut map, "more", BOOL, &mut more)?,
+                "rate_hz" => diag.value(&mut map, "rate_hz", NUMBER, &mut rate_hz)?,
+                "scale" => diag.value(&mut map, "scale", NUMBER, &mut scale)?,
                 "tip_offset" => {
                     diag.value::<_, [f32; 2]>(&mut map, "tip_offset", TIP, &mut tip_offset)?
                 }
@@ -341,19 +341,33 @@ impl Body for Stroke {
                 _ => return Err(unknown(diag, Self::NAME, key)),
             }
         }
-        let Some(rate_hz) = rate_hz else {
-            return Err(diag.fail(Problem::MissingField("rate_hz")));
-        };
-        let Some(full_scale_g) = full_scale_g else {
-            return Err(diag.fail(Problem::MissingField("full_scale_g")));
-        };
         let Some(samples) = samples else {
             return Err(diag.fail(Problem::MissingField("samples")));
         };
+        let more = more.unwrap_or(false);
+        if more {
+            // The settings belong to the last chunk, which gets the estimate.
+            let given = [
+                ("rate_hz", rate_hz.is_some()),
+                ("scale", scale.is_some()),
+                ("tip_offset", tip_offset.is_some()),
+                ("cue_mass", cue_mass.is_some()),
+                ("tip_restitution", tip_restitution.is_some()),
+            ];
+            if let Some((field, _)) = given.into_iter().find(|(_, given)| *given) {
+                return Err(diag.fail(Problem::Conflict {
+                    field,
+                    with: "more",
+                }));
+            }
+        } else if rate_hz.is_none() {
+            return Err(diag.fail(Problem::MissingField("rate_hz")));
+        }
         Ok(Stroke {
-            rate_hz,
-            full_scale_g,
             samples,
+            more,
+            rate_hz,
+            scale,
             tip_offset,
             cue_mass,
             tip_restitution,
@@ -378,13 +392,13 @@ impl Body for () {
     }
 }
 
-/// The `samples` array, into a fixed-capacity vector.
+/// The `samples` array of one chunk, into a fixed-capacity vector.
 struct SamplesSeed<'d> {
     diag: &'d mut Diag,
 }
 
 impl<'de> DeserializeSeed<'de> for SamplesSeed<'_> {
-    type Value = Vec<[i16; 3], MAX_SAMPLES>;
+    type Value = Vec<i16, MAX_SAMPLES>;
 
     fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<Self::Value, D::Error> {
         deserializer.deserialize_seq(self)
@@ -392,7 +406,7 @@ impl<'de> DeserializeSeed<'de> for SamplesSeed<'_> {
 }
 
 impl<'de> Visitor<'de> for SamplesSeed<'_> {
-    type Value = Vec<[i16; 3], MAX_SAMPLES>;
+    type Value = Vec<i16, MAX_SAMPLES>;
 
     fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(SAMPLES)
@@ -400,7 +414,7 @@ impl<'de> Visitor<'de> for SamplesSeed<'_> {
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
         let mut samples = Vec::new();
-        while let Some(sample) = seq.next_element::<[i16; 3]>()? {
+        while let Some(sample) = seq.next_element::<i16>()? {
             if samples.push(sample).is_err() {
                 return Err(self.diag.fail(Problem::TooMany {
                     field: "samples",

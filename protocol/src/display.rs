@@ -114,16 +114,23 @@ impl fmt::Display for Summary<'_> {
             }
             Answer::Stroke(s) => write!(
                 f,
-                "cue {:.3} m/s at the tip -> ball {:.3} m/s, w {} rad/s ({} samples)",
+                "cue {:.3} m/s at the tip -> ball {:.3} m/s, w {} rad/s ({} samples, impact at #{}, {:.3} s of stroke)",
                 s.cue_speed,
                 s.ball_speed,
                 Short(s.ball_spin),
-                s.samples
+                s.samples,
+                s.impact_index,
+                s.stroke_duration
+            ),
+            Answer::StrokeChunk(c) => write!(
+                f,
+                "stroke samples held: {} of {}",
+                c.samples, c.capacity
             ),
             Answer::Version(v) => write!(
                 f,
-                "protocol {}, {} on {}; lines up to {} bytes, strokes up to {} samples",
-                v.protocol, v.firmware, v.board, v.max_line, v.max_samples
+                "protocol {}, {} on {}; lines up to {} bytes, strokes up to {} samples in chunks of {}",
+                v.protocol, v.firmware, v.board, v.max_line, v.stroke_capacity, v.max_samples
             ),
             Answer::Shutdown(s) => write!(
                 f,

@@ -38,7 +38,7 @@ mod problem;
 pub mod request;
 mod session;
 
-pub use answer::{Answer, CollideAnswer, ErrorAnswer, InputEcho};
+pub use answer::{Answer, CollideAnswer, ErrorAnswer, InputEcho, StrokeAnswer, StrokeChunkAnswer};
 pub use decode::decode;
 pub use display::Summary;
 pub use line::{Event, LineReader};
@@ -51,8 +51,9 @@ pub use session::{AnswerLine, Control, Identity, Served, Session};
 /// request or answer.
 pub const PROTOCOL_VERSION: u32 = 1;
 
-/// Longest request line, in bytes without the `\n` (a `\r` before it counts). Sized
-/// for a `stroke` of [`MAX_SAMPLES`] typical samples; `collide` needs about 200.
+/// Longest request line, in bytes without the `\n` (a `\r` before it counts). Holds a
+/// `stroke` chunk of [`MAX_SAMPLES`] samples of up to 9 characters each; `collide`
+/// needs about 200.
 pub const MAX_LINE: usize = 10 * 1024;
 
 /// Longest answer line, `\n` included. The largest answer (`collide` with every
@@ -60,5 +61,9 @@ pub const MAX_LINE: usize = 10 * 1024;
 /// 1,000.
 pub const MAX_ANSWER: usize = 1024;
 
-/// Most accelerometer samples in one `stroke` request (120 ms at 3.3 kHz).
-pub const MAX_SAMPLES: usize = 400;
+/// Most accelerometer samples in one `stroke` chunk (one line).
+pub const MAX_SAMPLES: usize = 1024;
+
+/// Most samples in one stroke, all chunks: 3.6 s at the LSM6DSOX's 6.66 kHz, the window
+/// `cuesight-sensors` is tested with (48 KB of `i16`, held by the [`Session`]).
+pub const STROKE_CAPACITY: usize = 24_000;

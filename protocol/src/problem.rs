@@ -5,6 +5,8 @@ use core::fmt::{self, Write};
 
 use serde::{Deserialize, Serialize};
 
+use cuesight_sensors::{ConfigField, StrokeError};
+
 use crate::answer::ErrorAnswer;
 use crate::json::Syntax;
 use crate::names::ModelNames;
@@ -96,6 +98,8 @@ pub enum ErrorKind {
     NumericalFailure,
     /// A valid request this device cannot answer.
     Unsupported,
+    /// The `stroke` samples hold no usable stroke (no rest, no impact, saturated, ...).
+    StrokeRejected,
     /// The answer did not fit the answer buffer (a bug: sizes are checked by tests).
     Internal,
 }
@@ -118,6 +122,7 @@ impl ErrorKind {
             ErrorKind::OutOfRange => "out_of_range",
             ErrorKind::NumericalFailure => "numerical_failure",
             ErrorKind::Unsupported => "unsupported",
+            ErrorKind::StrokeRejected => "stroke_rejected",
             ErrorKind::Internal => "internal",
         }
     }
@@ -195,6 +200,8 @@ pub enum Problem {
     },
     /// A value the core refused, or its numerical guard.
     Value(cuesight::Error),
+    /// The stroke estimator refused the samples or its settings.
+    Stroke(StrokeError),
     /// A request this device cannot answer.
     Unsupported {
         /// The field or request concerned.
@@ -225,10 +232,14 @@ impl Problem {
             Problem::InvalidValue { .. } | Problem::UnknownModel(_) => ErrorKind::InvalidValue,
             Problem::Conflict { .. } => ErrorKind::Conflict,
             Problem::TooMany { .. } => ErrorKind::OutOfRange,
-            Problem::Value(cuesight::Error::NotFinite { .. }) => ErrorKind::NotFinite,
-            Problem::Value(cuesight::Error::OutOfRange { .. }) => ErrorKind::OutOfRange,
-            Problem::Value(cuesight::Error::NumericalFailure) => ErrorKind::NumericalFailure,
+            Problem::Value(error) | Problem::Stroke(StrokeError::Strike(error)) => {
+                value_kind(error)
+            }
             Problem::Unsupported { .. } => ErrorKind::Unsupported,
+            Problem::Stroke(StrokeError::InvalidConfig(_) | StrokeError::NotFinite { .. }) => {
+                ErrorKind::OutOfRange
+            }
+            Problem::Stroke(_) => ErrorKind::StrokeRejected,
         }
     }
 
@@ -248,6 +259,7 @@ impl Problem {
             | Problem::Unsupported { field, .. } => Some(Name::of(field)),
             Problem::UnknownModel(_) => Some(Name::of("model")),
             Problem::Value(error) => error.field().map(|f| Name::of(f.name())),
+            Problem::Stroke(error) => Some(Name::of(stroke_field(error))),
         }
     }
 
@@ -328,7 +340,67 @@ impl fmt::Display for Problem {
                 write!(f, "{field}: more than {limit}, the buffer's capacity")
             }
             Problem::Value(error) => fmt::Display::fmt(error, f),
+            Problem::Stroke(error) => write_stroke_error(f, error),
             Problem::Unsupported { field, reason } => write!(f, "{field}: {reason}"),
         }
+    }
+}
+
+/// The class of a value the core refused.
+const fn value_kind(error: &cuesight::Error) -> ErrorKind {
+    match error {
+        cuesight::Error::NotFinite { .. } => ErrorKind::NotFinite,
+        cuesight::Error::OutOfRange { .. } => ErrorKind::OutOfRange,
+        cuesight::Error::NumericalFailure => ErrorKind::NumericalFailure,
+    }
+}
+
+/// The request field a stroke error concerns.
+fn stroke_field(error: &StrokeError) -> &'static str {
+    match error {
+        StrokeError::InvalidConfig(ConfigField::SampleRate) => "rate_hz",
+        StrokeError::InvalidConfig(ConfigField::FullScale) | StrokeError::NotFinite { .. } => {
+            "scale"
+        }
+        StrokeError::Strike(error) => error.field().map_or("stroke", |f| f.name()),
+        _ => "samples",
+    }
+}
+
+fn write_stroke_error(f: &mut fmt::Formatter<'_>, error: &StrokeError) -> fmt::Result {
+    match error {
+        StrokeError::InvalidConfig(ConfigField::SampleRate) => {
+            f.write_str("rate_hz must be in [500, 100000] Hz")
+        }
+        StrokeError::InvalidConfig(ConfigField::FullScale) => f.write_str(
+            "scale: the full scale, 32768 x |scale|, must exceed the 8 g impact threshold",
+        ),
+        StrokeError::InvalidConfig(field) => {
+            write!(f, "stroke estimator setting out of range: {field:?}")
+        }
+        StrokeError::NotFinite { .. } => f.write_str("scale must be a finite, non-zero number"),
+        StrokeError::TooShort { len, min } => write!(
+            f,
+            "samples: {len} samples, at least {min} are needed at this rate"
+        ),
+        StrokeError::NotAtRest => f.write_str(
+            "samples: no rest of 150 ms before an impact (start the capture with the cue held still)",
+        ),
+        StrokeError::NoImpact => {
+            f.write_str("samples: no impact (a deceleration of 8 g) after the rest")
+        }
+        StrokeError::Saturated { index } => write!(
+            f,
+            "samples: sample {index} reached the sensor's full scale before the impact"
+        ),
+        StrokeError::NotForward { speed } => write!(
+            f,
+            "samples: the cue speed at impact integrates to {speed} m/s, not forward (a negative scale flips the axis)"
+        ),
+        StrokeError::LengthMismatch { accel, pitch } => write!(
+            f,
+            "samples: {accel} accelerometer and {pitch} gyro samples"
+        ),
+        StrokeError::Strike(error) => fmt::Display::fmt(error, f),
     }
 }

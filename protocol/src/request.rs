@@ -266,37 +266,69 @@ pub struct Prepared {
     pub input: InputEcho,
 }
 
-/// `stroke`: raw accelerometer samples around a tip impact, and the cue.
+/// `stroke`: raw accelerometer samples of a stroke, in one or more chunks, and the cue.
 ///
-/// Samples are raw signed 16-bit counts `[ax, ay, az]` of the IMU's accelerometer at
-/// `rate_hz`, with `full_scale_g` the range setting (±g at ±32768 counts); `x` runs along
-/// the cue towards the tip.
+/// `samples` are the raw signed 16-bit words of the accelerometer axis along the cue
+/// (forward, towards the tip, positive; a negative `scale` flips a sensor mounted the
+/// other way), oldest first, at `rate_hz`. The window must start with the cue held
+/// still (≥ 150 ms) and contain the tip impact (`cuesight_sensors::stroke`). A window
+/// longer than one line is sent in chunks: every chunk but the last has `"more":true`
+/// and carries only `samples`; the last carries the rest of the fields and gets the
+/// estimate. A session holds [`crate::STROKE_CAPACITY`] samples.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Stroke {
-    /// Output data rate (Hz).
-    pub rate_hz: f32,
-    /// Accelerometer full scale (g at 32768 counts).
-    pub full_scale_g: f32,
-    /// Raw samples `[ax, ay, az]`, oldest first.
-    pub samples: Vec<[i16; 3], MAX_SAMPLES>,
-    /// Tip offset `[side, height]` from the ball centre (m); centre ball when absent.
+    /// This chunk's raw samples.
+    pub samples: Vec<i16, MAX_SAMPLES>,
+    /// More chunks follow.
+    pub more: bool,
+    /// Output data rate (Hz), the part's trimmed ODR; required in the last chunk.
+    pub rate_hz: Option<f32>,
+    /// m/s² per LSB; the LSM6DSOX at ±16 g when absent. The sensor's full scale is
+    /// taken as `32768·|scale|`.
+    pub scale: Option<f32>,
+    /// Tip offset `[side, height]` from the ball centre (m, side > 0 right, height > 0
+    /// above); a centre-ball hit when absent.
     pub tip_offset: Option<[f32; 2]>,
-    /// Cue mass (kg); the typical cue when absent.
+    /// Cue mass (kg); the typical cue (0.54 kg) when absent.
     pub cue_mass: Option<f32>,
-    /// Tip restitution; the typical tip when absent.
+    /// Tip restitution; the typical tip (0.75) when absent.
     pub tip_restitution: Option<f32>,
 }
 
 impl Stroke {
     /// Field names, in wire order.
-    pub const FIELDS: [&'static str; 6] = [
-        "rate_hz",
-        "full_scale_g",
+    pub const FIELDS: [&'static str; 7] = [
         "samples",
+        "more",
+        "rate_hz",
+        "scale",
         "tip_offset",
         "cue_mass",
         "tip_restitution",
     ];
+
+    /// A chunk of `samples` with more to follow.
+    pub fn chunk(samples: Vec<i16, MAX_SAMPLES>) -> Self {
+        Self {
+            samples,
+            more: true,
+            rate_hz: None,
+            scale: None,
+            tip_offset: None,
+            cue_mass: None,
+            tip_restitution: None,
+        }
+    }
+
+    /// The last (or only) chunk: `samples` at `rate_hz`, the other fields at their
+    /// defaults.
+    pub fn last(samples: Vec<i16, MAX_SAMPLES>, rate_hz: f32) -> Self {
+        Self {
+            more: false,
+            rate_hz: Some(rate_hz),
+            ..Self::chunk(samples)
+        }
+    }
 }
 
 /// `{}`, the body of `version` and `shutdown`.
@@ -347,27 +379,37 @@ impl Serialize for Collide {
 
 impl Serialize for Stroke {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let optional = [
-            self.tip_offset.is_some(),
-            self.cue_mass.is_some(),
-            self.tip_restitution.is_some(),
+        let numbers = [
+            ("rate_hz", self.rate_hz),
+            ("scale", self.scale),
+            ("cue_mass", self.cue_mass),
+            ("tip_restitution", self.tip_restitution),
         ];
-        let len = 3 + optional.iter().filter(|&&b| b).count();
-        let mut s = serializer.serialize_struct("Stroke", len)?;
-        s.serialize_field("rate_hz", &self.rate_hz)?;
-        s.serialize_field("full_scale_g", &self.full_scale_g)?;
+        let given = numbers.iter().filter(|(_, v)| v.is_some()).count()
+            + usize::from(self.tip_offset.is_some())
+            + usize::from(self.more);
+        let mut s = serializer.serialize_struct("Stroke", 1 + given)?;
         s.serialize_field("samples", self.samples.as_slice())?;
+        if self.more {
+            s.serialize_field("more", &true)?;
+        } else {
+            s.skip_field("more")?;
+        }
+        for (key, value) in &numbers[..2] {
+            match value {
+                Some(value) => s.serialize_field(key, value)?,
+                None => s.skip_field(key)?,
+            }
+        }
         match self.tip_offset {
             Some(tip) => s.serialize_field("tip_offset", &tip)?,
             None => s.skip_field("tip_offset")?,
         }
-        match self.cue_mass {
-            Some(mass) => s.serialize_field("cue_mass", &mass)?,
-            None => s.skip_field("cue_mass")?,
-        }
-        match self.tip_restitution {
-            Some(e) => s.serialize_field("tip_restitution", &e)?,
-            None => s.skip_field("tip_restitution")?,
+        for (key, value) in &numbers[2..] {
+            match value {
+                Some(value) => s.serialize_field(key, value)?,
+                None => s.skip_field(key)?,
+            }
         }
         s.end()
     }

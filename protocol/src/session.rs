@@ -3,17 +3,20 @@
 //! few lines and everything here is tested on the host.
 
 use cuesight::collide;
+use cuesight::strike::{Cue, TipOffset};
+use cuesight_sensors::{estimate_raw, StrokeConfig, StrokeError, ACCEL_MPS2_PER_LSB};
 use heapless::Vec;
 
 use crate::answer::{
-    Answer, CollideAnswer, ErrorAnswer, ParamsAnswer, ShutdownAnswer, VersionAnswer,
+    Answer, CollideAnswer, ErrorAnswer, ParamsAnswer, ShutdownAnswer, StrokeAnswer,
+    StrokeChunkAnswer, VersionAnswer,
 };
 use crate::decode::decode;
 use crate::line::Event;
 use crate::names::ModelName;
 use crate::problem::{ErrorKind, Message, Name, Problem};
 use crate::request::{Collide, Defaults, Overrides, Request, Stroke};
-use crate::{MAX_ANSWER, MAX_LINE, MAX_SAMPLES, PROTOCOL_VERSION};
+use crate::{MAX_ANSWER, MAX_LINE, MAX_SAMPLES, PROTOCOL_VERSION, STROKE_CAPACITY};
 
 /// An answer line: JSON and its `\n`.
 pub type AnswerLine = Vec<u8, MAX_ANSWER>;
@@ -49,11 +52,14 @@ pub struct Served {
     pub control: Control,
 }
 
-/// One session: the defaults set by `params` and the counters `shutdown` reports.
+/// One session: the defaults set by `params`, the samples of a `stroke` sent in chunks
+/// (48 KB: keep the session in a static or on a large stack), and the counters
+/// `shutdown` reports.
 #[derive(Clone, Debug)]
 pub struct Session {
     defaults: Defaults,
     identity: Identity,
+    capture: Vec<i16, STROKE_CAPACITY>,
     requests: u32,
     errors: u32,
 }
@@ -64,6 +70,7 @@ impl Session {
         Self {
             defaults: Defaults::POOL,
             identity,
+            capture: Vec::new(),
             requests: 0,
             errors: 0,
         }
@@ -114,6 +121,9 @@ impl Session {
             }
             Err(problem) => {
                 self.errors = self.errors.saturating_add(1);
+                // The line may have been a chunk of the stroke in progress: drop it
+                // rather than estimate from a window with a hole.
+                self.capture.clear();
                 let answer = Answer::Error(problem.to_answer());
                 write_answer(&answer, out);
                 Served {
@@ -139,7 +149,7 @@ impl Session {
         let answer = match request {
             Request::Collide(collide) => Answer::Collide(self.collide(collide)?),
             Request::Params(overrides) => Answer::Params(self.set_params(overrides)?),
-            Request::Stroke(stroke) => return Err(self.stroke(stroke)),
+            Request::Stroke(stroke) => self.stroke(stroke)?,
             Request::Version => Answer::Version(self.version()),
             Request::Shutdown => {
                 let answer = Answer::Shutdown(ShutdownAnswer {
@@ -166,11 +176,57 @@ impl Session {
         Ok(ParamsAnswer::from(&self.defaults))
     }
 
-    fn stroke(&self, _stroke: &Stroke) -> Problem {
-        Problem::Unsupported {
-            field: "stroke",
-            reason: "stroke estimator not available",
+    /// Adds a chunk to the capture; on the last chunk, estimates and clears it.
+    fn stroke(&mut self, stroke: &Stroke) -> Result<Answer, Problem> {
+        if self.capture.extend_from_slice(&stroke.samples).is_err() {
+            self.capture.clear();
+            return Err(Problem::TooMany {
+                field: "samples",
+                limit: STROKE_CAPACITY,
+            });
         }
+        if stroke.more {
+            return Ok(Answer::StrokeChunk(StrokeChunkAnswer {
+                samples: self.capture.len() as u32,
+                capacity: STROKE_CAPACITY as u32,
+            }));
+        }
+        let result = self.estimate(stroke);
+        self.capture.clear();
+        result.map(Answer::Stroke)
+    }
+
+    fn estimate(&self, stroke: &Stroke) -> Result<StrokeAnswer, Problem> {
+        // Checked by the decoder: the last chunk has a rate.
+        let rate_hz = stroke.rate_hz.unwrap_or(f32::NAN);
+        let scale = stroke.scale.unwrap_or(ACCEL_MPS2_PER_LSB);
+        let cue = Cue::new(
+            stroke.cue_mass.unwrap_or(Cue::TYPICAL.mass()),
+            stroke
+                .tip_restitution
+                .unwrap_or(Cue::TYPICAL.tip_restitution()),
+        )?;
+        let [side, height] = stroke.tip_offset.unwrap_or([0.0; 2]);
+        let tip = TipOffset::new(side, height)?;
+        let mut config = StrokeConfig::new(rate_hz);
+        // A raw word saturates at ±32768: the full scale follows the scale.
+        config.full_scale = 32768.0 * if scale < 0.0 { -scale } else { scale };
+        let estimate = estimate_raw(&self.capture, scale, &config).map_err(Problem::Stroke)?;
+        let hit = estimate
+            .strike(&self.defaults.params, &cue, tip)
+            .map_err(|e| match e {
+                StrokeError::Strike(error) => Problem::Value(error),
+                other => Problem::Stroke(other),
+            })?;
+        Ok(StrokeAnswer {
+            cue_speed: estimate.cue_speed,
+            ball_speed: hit.speed,
+            ball_spin: hit.spin.to_array().map(|c| c + 0.0),
+            samples: self.capture.len() as u32,
+            impact_index: estimate.impact_index as u32,
+            stroke_duration: estimate.stroke_duration,
+            rest_noise: estimate.rest_noise,
+        })
     }
 
     fn version(&self) -> VersionAnswer {
@@ -180,6 +236,7 @@ impl Session {
             board: Name::of(self.identity.board),
             max_line: MAX_LINE as u32,
             max_samples: MAX_SAMPLES as u32,
+            stroke_capacity: STROKE_CAPACITY as u32,
         }
     }
 }

@@ -5,7 +5,7 @@ use cuesight::{Model, Params};
 use cuesight_protocol::{
     decode, json, Answer, AnswerLine, Collide, Control, ErrorKind, Event, Identity, LineReader,
     ModelName, Overrides, Problem, Request, Session, Spin, Stroke, Summary, MAX_ANSWER, MAX_LINE,
-    MAX_SAMPLES,
+    MAX_SAMPLES, STROKE_CAPACITY,
 };
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -68,18 +68,22 @@ fn random_request(rng: &mut ChaCha8Rng) -> Request {
             with: with(rng),
         }),
         2 => Request::Params(with(rng)),
-        3 => Request::Stroke(Stroke {
-            rate_hz: 3333.0,
-            full_scale_g: 16.0,
-            samples: (0..rng.random_range(0..50))
-                .map(|_| [0; 3].map(|_: i16| rng.random()))
-                .collect(),
-            tip_offset: rng
-                .random_bool(0.5)
-                .then(|| [rng.random_range(-0.01..0.01), 0.005]),
-            cue_mass: maybe(rng, 0.4, 0.6),
-            tip_restitution: None,
-        }),
+        3 => {
+            let samples = (0..rng.random_range(0..50)).map(|_| rng.random()).collect();
+            if rng.random_bool(0.5) {
+                Request::Stroke(Stroke::chunk(samples))
+            } else {
+                Request::Stroke(Stroke {
+                    scale: maybe(rng, 0.001, 0.01),
+                    tip_offset: rng
+                        .random_bool(0.5)
+                        .then(|| [rng.random_range(-0.01..0.01), 0.005]),
+                    cue_mass: maybe(rng, 0.4, 0.6),
+                    tip_restitution: maybe(rng, 0.7, 0.8),
+                    ..Stroke::last(samples, rng.random_range(1000.0..7000.0))
+                })
+            }
+        }
         _ => [Request::Version, Request::Shutdown][rng.random_range(0..2)].clone(),
     }
 }
@@ -269,9 +273,15 @@ fn every_error_kind_is_named() {
             "missing field",
         ),
         (
-            r#"{"stroke":{"rate_hz":3333,"full_scale_g":16}}"#,
+            r#"{"stroke":{"rate_hz":3333}}"#,
             MissingField,
             Some("samples"),
+            "missing",
+        ),
+        (
+            r#"{"stroke":{"samples":[1,2]}}"#,
+            MissingField,
+            Some("rate_hz"),
             "missing",
         ),
         (
@@ -311,10 +321,22 @@ fn every_error_kind_is_named() {
             "empty object",
         ),
         (
-            r#"{"stroke":{"rate_hz":3333,"full_scale_g":16,"samples":[[1,2,70000]]}}"#,
+            r#"{"stroke":{"rate_hz":3333,"samples":[1,2,70000]}}"#,
             WrongType,
             Some("samples"),
             "-32768",
+        ),
+        (
+            r#"{"stroke":{"rate_hz":3333,"samples":[[1,2,3]]}}"#,
+            WrongType,
+            Some("samples"),
+            "integers",
+        ),
+        (
+            r#"{"stroke":{"samples":[1],"more":true,"rate_hz":3333}}"#,
+            Conflict,
+            Some("rate_hz"),
+            "rate_hz and more",
         ),
         (
             r#"{"params":{"model":"kimgrip"}}"#,
@@ -383,10 +405,34 @@ fn every_error_kind_is_named() {
             "host only",
         ),
         (
-            r#"{"stroke":{"rate_hz":3333,"full_scale_g":16,"samples":[]}}"#,
-            Unsupported,
-            Some("stroke"),
-            "stroke estimator not available",
+            r#"{"stroke":{"rate_hz":3333,"samples":[]}}"#,
+            StrokeRejected,
+            Some("samples"),
+            "at least",
+        ),
+        (
+            r#"{"stroke":{"rate_hz":50,"samples":[1]}}"#,
+            OutOfRange,
+            Some("rate_hz"),
+            "[500, 100000]",
+        ),
+        (
+            r#"{"stroke":{"rate_hz":1000,"scale":0.0001,"samples":[1]}}"#,
+            OutOfRange,
+            Some("scale"),
+            "full scale",
+        ),
+        (
+            r#"{"stroke":{"rate_hz":1000,"scale":0,"samples":[1]}}"#,
+            OutOfRange,
+            Some("scale"),
+            "non-zero",
+        ),
+        (
+            r#"{"stroke":{"rate_hz":1000,"cue_mass":5,"samples":[1]}}"#,
+            OutOfRange,
+            Some("cue_mass"),
+            "cue_mass = 5",
         ),
         (&long, LineTooLong, None, "the limit is 10240"),
     ];
@@ -401,9 +447,8 @@ fn every_error_kind_is_named() {
         );
     }
     // Too many samples.
-    let samples = vec!["[1,2,3]"; MAX_SAMPLES + 1].join(",");
-    let line =
-        format!(r#"{{"stroke":{{"rate_hz":3333,"full_scale_g":16,"samples":[{samples}]}}}}"#);
+    let samples = vec!["-32768"; MAX_SAMPLES + 1].join(",");
+    let line = format!(r#"{{"stroke":{{"rate_hz":3333,"samples":[{samples}]}}}}"#);
     assert!(line.len() <= MAX_LINE);
     let (k, f, message) = error_of(&line);
     assert_eq!(
@@ -480,7 +525,7 @@ fn version_names_the_limits() {
     assert_eq!(
         text,
         format!(
-            r#"{{"version":{{"protocol":1,"firmware":"test 0.0.0","board":"host","max_line":{MAX_LINE},"max_samples":{MAX_SAMPLES}}}}}"#
+            r#"{{"version":{{"protocol":1,"firmware":"test 0.0.0","board":"host","max_line":{MAX_LINE},"max_samples":{MAX_SAMPLES},"stroke_capacity":{STROKE_CAPACITY}}}}}"#
         )
     );
     assert!(Summary(&answer)
@@ -590,4 +635,142 @@ fn fuzzed_lines_always_get_one_parseable_answer() {
     }
     assert!(errors > 5000, "{errors}");
     let _ = Problem::MissingField("x"); // the type is public for hosts that match on it
+}
+
+/// A clean synthetic stroke in raw words (LSM6DSOX ±16 g scale): 0.5 s at rest, a
+/// half-sine acceleration to `speed` over 0.3 s, a 20 g impact (clipped at full scale),
+/// 20 ms after it.
+fn clean_stroke(rate_hz: f32, speed: f32) -> Vec<i16> {
+    let scale = cuesight_sensors::ACCEL_MPS2_PER_LSB;
+    let n = |seconds: f32| (seconds * rate_hz) as usize;
+    let bias = 100i16; // offset plus gravity along a slightly raised cue
+    let (duration, steps) = (0.3, n(0.3));
+    // a = A sin(π t / T) reaches v = 2 A T / π at t = T.
+    let peak = std::f32::consts::PI * speed / (2.0 * duration);
+    let mut samples = vec![bias; n(0.5)];
+    samples.extend((0..steps).map(|i| {
+        let t = (i as f32 + 0.5) / rate_hz;
+        let a = peak * (std::f32::consts::PI * t / duration).sin();
+        bias + (a / scale).round() as i16
+    }));
+    samples.extend(std::iter::repeat_n(i16::MIN, 3));
+    samples.extend(std::iter::repeat_n(bias, n(0.02)));
+    samples
+}
+
+fn stroke_chunks(samples: &[i16], rate_hz: f32) -> Vec<Request> {
+    let chunks: Vec<_> = samples.chunks(MAX_SAMPLES).collect();
+    chunks
+        .iter()
+        .enumerate()
+        .map(|(i, chunk)| {
+            let chunk = chunk.iter().copied().collect();
+            if i + 1 < chunks.len() {
+                Request::Stroke(Stroke::chunk(chunk))
+            } else {
+                Request::Stroke(Stroke::last(chunk, rate_hz))
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn a_stroke_in_chunks_gets_the_estimators_answer() {
+    let mut session = Session::new(IDENTITY);
+    for (rate, speed) in [(1000.0f32, 2.0f32), (6667.0, 3.5)] {
+        let samples = clean_stroke(rate, speed);
+        let requests = stroke_chunks(&samples, rate);
+        let mut last = None;
+        for (i, request) in requests.iter().enumerate() {
+            let line = serde_json::to_string(request).unwrap();
+            assert!(line.len() <= MAX_LINE);
+            let (answer, _) = serve(&mut session, line.as_bytes());
+            if i + 1 < requests.len() {
+                let Answer::StrokeChunk(c) = answer else {
+                    panic!("{answer:?}")
+                };
+                assert_eq!(c.samples as usize, (i + 1) * MAX_SAMPLES);
+            } else {
+                last = Some(answer);
+            }
+        }
+        let Some(Answer::Stroke(s)) = last else {
+            panic!("{last:?}")
+        };
+        // The same numbers as the estimator and the strike model called directly.
+        let scale = cuesight_sensors::ACCEL_MPS2_PER_LSB;
+        let mut config = cuesight_sensors::StrokeConfig::new(rate);
+        config.full_scale = 32768.0 * scale;
+        let direct = cuesight_sensors::estimate_raw(&samples, scale, &config).unwrap();
+        assert_eq!(s.cue_speed, direct.cue_speed);
+        assert_eq!(s.samples as usize, samples.len());
+        assert!((s.cue_speed - speed).abs() < 0.01 * speed, "{s:?}");
+        let hit = direct
+            .strike(
+                &Params::POOL,
+                &cuesight::strike::Cue::TYPICAL,
+                cuesight::strike::TipOffset::CENTRE,
+            )
+            .unwrap();
+        assert_eq!(s.ball_speed, hit.speed);
+        assert_eq!(s.ball_spin, [0.0; 3]);
+        assert!(Summary(&Answer::Stroke(s)).to_string().starts_with("cue "));
+    }
+}
+
+#[test]
+fn stroke_errors_name_the_problem_and_drop_the_capture() {
+    let mut session = Session::new(IDENTITY);
+    let samples = clean_stroke(6667.0, 2.0);
+    let line_of = |request: &Request| serde_json::to_string(request).unwrap();
+    // No rest: the window starts in the middle of the stroke.
+    let tail = &samples[samples.len() - 1000..];
+    let middle = Request::Stroke(Stroke::last(tail.iter().copied().collect(), 6667.0));
+    let (answer, _) = serve(&mut session, line_of(&middle).as_bytes());
+    let Answer::Error(e) = answer else {
+        panic!("{answer:?}")
+    };
+    assert_eq!(e.kind, ErrorKind::StrokeRejected, "{}", e.message);
+    // A bad line between chunks abandons the stroke: the last chunk alone is too short.
+    let requests = stroke_chunks(&samples, 6667.0);
+    assert!(requests.len() > 1);
+    serve(&mut session, line_of(&requests[0]).as_bytes());
+    serve(&mut session, b"{oops");
+    let (answer, _) = serve(&mut session, line_of(requests.last().unwrap()).as_bytes());
+    assert!(
+        matches!(answer, Answer::Error(ref e) if e.kind == ErrorKind::StrokeRejected),
+        "{answer:?}"
+    );
+    // Over capacity.
+    let chunk = Request::Stroke(Stroke::chunk([0i16; MAX_SAMPLES].into_iter().collect()));
+    let mut answer = None;
+    for _ in 0..=STROKE_CAPACITY / MAX_SAMPLES {
+        answer = Some(serve(&mut session, line_of(&chunk).as_bytes()).0);
+    }
+    let Some(Answer::Error(e)) = answer else {
+        panic!("{answer:?}")
+    };
+    assert_eq!(
+        (e.kind, e.field.unwrap().as_str()),
+        (ErrorKind::OutOfRange, "samples")
+    );
+    // A hit 2R/5 above centre rolls the ball; a tip beyond half a radius is refused.
+    let short = clean_stroke(1000.0, 2.0);
+    let mut last = Stroke::last(short.iter().copied().collect(), 1000.0);
+    last.tip_offset = Some([0.0, 0.4 * 0.028575]);
+    let (answer, _) = serve(
+        &mut session,
+        line_of(&Request::Stroke(last.clone())).as_bytes(),
+    );
+    let Answer::Stroke(s) = answer else {
+        panic!("{answer:?}")
+    };
+    let roll = s.ball_speed / 0.028575;
+    assert!((s.ball_spin[1] - roll).abs() < 1e-3 * roll, "{s:?}");
+    last.tip_offset = Some([0.02, 0.0]);
+    let (answer, _) = serve(&mut session, line_of(&Request::Stroke(last)).as_bytes());
+    let Answer::Error(e) = answer else {
+        panic!("{answer:?}")
+    };
+    assert_eq!(e.field.unwrap().as_str(), "tip_offset", "{}", e.message);
 }

@@ -9,6 +9,7 @@
 //!
 //! Both install what they need first (rustup target and components, QEMU, defmt-print).
 
+mod bench;
 mod cmd;
 mod qemu;
 mod size;
@@ -46,6 +47,9 @@ enum Command {
         #[arg(long, default_value_t = qemu::DEFAULT_TIMEOUT_SECS)]
         timeout: u64,
     },
+    /// Measure every model x backend x precision (Cortex-M4 instructions under QEMU, host
+    /// ns, error on the grid); write target/bench/tradeoff.json and docs/tradeoff.{md,svg}.
+    Bench(bench::Args),
     /// Run every check, stopping at the first failure.
     Test {
         /// Run the remaining steps after a failure instead of stopping.
@@ -73,6 +77,7 @@ fn main() -> ExitCode {
                 }
             }),
         Command::Test { keep_going } => test::run_all(keep_going),
+        Command::Bench(args) => bench::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

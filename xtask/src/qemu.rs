@@ -90,7 +90,7 @@ pub fn run_session(elf: &Path, session: &Path, timeout: Duration) -> Result {
         if line.trim().is_empty() {
             continue;
         }
-        println!("> {line}");
+        println!("> {}", shorten(line));
         let left = deadline.saturating_duration_since(Instant::now());
         let answer = match fw.request(line.as_bytes(), left) {
             Ok(answer) => answer,
@@ -122,6 +122,15 @@ pub fn run_session(elf: &Path, session: &Path, timeout: Duration) -> Result {
     let ended = fw.wait(deadline.saturating_duration_since(Instant::now()));
     print_log(&ended);
     finish(&ended, &format!("{answered} requests answered"))
+}
+
+/// `line`, cut to about two terminal lines.
+fn shorten(line: &str) -> String {
+    const SHOWN: usize = 150;
+    match line.char_indices().nth(SHOWN) {
+        Some((cut, _)) => format!("{}... ({} bytes)", &line[..cut], line.len()),
+        None => line.to_owned(),
+    }
 }
 
 /// A person types requests; each answer is printed raw and summarised. End of input

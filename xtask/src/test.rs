@@ -79,6 +79,10 @@ const STEPS: &[Step] = &[
         title: "firmware: end-to-end test in QEMU",
         action: end_to_end,
     },
+    Step {
+        title: "bench-firmware: fmt, clippy, KimGrip f32 disassembly (vsqrt.f32, no soft f64)",
+        action: crate::bench::check,
+    },
 ];
 
 fn demo_session() -> Result {

@@ -1,0 +1,157 @@
+//! `cargo xtask bench`: the measured speed/accuracy trade of every model (issue 4),
+//! and the disassembly check that `cargo xtask test` runs.
+//!
+//! For every model (`Model::ALL`, then `Auto` at three tolerances) × math backend
+//! (`libm`, `micromath`) × evaluation precision (`f32`; `f64` with `libm`):
+//!
+//! 1. instructions per prediction on the Cortex-M4F, from `bench-firmware/` under QEMU
+//!    `mps2-an386` with `-icount shift=0` (one instruction per virtual nanosecond,
+//!    read from a CMSDK timer; loop and empty call subtracted; calibrated against
+//!    blocks of known length), on the first scenes of the grid, for the release
+//!    profile (opt-level 3) and the shipping one (opt-level "s");
+//! 2. host time per prediction with criterion (`host-tests/benches/collide.rs`,
+//!    `libm`), and the f64 reference solver's time on the same scenes;
+//! 3. max and RMS error against the reference on the whole grid, of the outcomes the
+//!    firmware itself printed (`host-tests/benches/tradeoff.rs`).
+//!
+//! Results: `target/bench/tradeoff.json`, `docs/tradeoff.md`, `docs/tradeoff.svg`.
+
+mod disasm;
+mod firmware;
+mod host;
+mod plot;
+mod report;
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use crate::cmd::{self, Failure, Result};
+use crate::tools;
+
+/// Options of `cargo xtask bench`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Seed of the scene grid (`cuesight_host::grid::scenes`).
+    #[arg(long, default_value_t = 2024)]
+    seed: u64,
+    /// Scenes the errors are measured on.
+    #[arg(long, default_value_t = 10_000)]
+    scenes: usize,
+    /// Leading scenes the instructions (and host times) are measured on.
+    #[arg(long, default_value_t = host::COUNTED_SCENES)]
+    counted: usize,
+    /// Kill a QEMU run after this many seconds and fail.
+    #[arg(long, default_value_t = 600)]
+    timeout: u64,
+    /// Skip the criterion timings (host ns and the reference ratio are left empty).
+    #[arg(long)]
+    no_host_timing: bool,
+}
+
+/// Where the measurements go: `target/bench/` (honours `CARGO_TARGET_DIR`).
+fn out_dir() -> PathBuf {
+    host::target_dir().join("bench")
+}
+
+/// Runs the whole benchmark and regenerates the documents.
+pub fn run(args: &Args) -> Result {
+    let started = Instant::now();
+    if args.counted == 0 || args.counted > args.scenes {
+        return Err(Failure::new("--counted must be between 1 and --scenes"));
+    }
+    if args.counted != host::COUNTED_SCENES && !args.no_host_timing {
+        println!(
+            "xtask bench: note: the criterion bench always uses the first {} scenes",
+            host::COUNTED_SCENES
+        );
+    }
+    tools::ensure_toolchain()?;
+    tools::ensure_qemu()?;
+    let dir = out_dir();
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| Failure::new(format!("creating {}: {e}", dir.display())))?;
+
+    section("scene set");
+    let scenes = dir.join("scenes.bin");
+    host::write_scenes(args.seed, args.scenes, args.counted, &scenes)?;
+
+    section("bench firmware under QEMU (-icount shift=0)");
+    let runs = firmware::measure(&scenes, &dir, Duration::from_secs(args.timeout))?;
+
+    section("errors against the reference");
+    let listings: Vec<PathBuf> = runs
+        .iter()
+        .filter(|r| r.build.outcomes)
+        .map(|r| r.listing.clone())
+        .collect();
+    let errors = host::score(args.seed, args.scenes, &listings, &dir.join("errors.json"))?;
+
+    let timings = if args.no_host_timing {
+        None
+    } else {
+        section("host time per prediction (criterion)");
+        Some(host::criterion()?)
+    };
+
+    section("report");
+    let bench = report::Bench {
+        seed: args.seed,
+        scenes: args.scenes,
+        counted: args.counted,
+        runs: &runs,
+        errors: &errors,
+        timings: timings.as_ref(),
+    };
+    let json = report::json(&bench)?;
+    let json_path = dir.join("tradeoff.json");
+    write(
+        &json_path,
+        &serde_json::to_string_pretty(&json).expect("JSON values serialise"),
+    )?;
+    let docs = cmd::root().join("docs");
+    write(&docs.join("tradeoff.md"), &report::markdown(&json))?;
+    write(&docs.join("tradeoff.svg"), &plot::svg(&json)?)?;
+    println!("{}", report::console(&json));
+    println!(
+        "xtask bench: wrote {}, docs/tradeoff.md, docs/tradeoff.svg in {:.0} s",
+        json_path.display(),
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// The `cargo xtask test` step: fmt and clippy of `bench-firmware/`, then the
+/// disassembly check of the f32 `KimGrip` hot path for each backend.
+pub fn check() -> Result {
+    let in_firmware = |args: &[&str]| {
+        cmd::run(
+            cmd::cargo()
+                .args(args)
+                .current_dir(firmware::bench_firmware_dir()),
+        )
+    };
+    // Not `--all`: that would also check the core (a path dependency), which the host
+    // steps already do.
+    in_firmware(&["fmt", "--", "--check"])?;
+    in_firmware(&[
+        "clippy",
+        "--release",
+        "--all-targets",
+        "--",
+        "-D",
+        "warnings",
+    ])?;
+    disasm::check_kimgrip()
+}
+
+fn section(title: &str) {
+    println!("\n==> bench: {title}");
+}
+
+fn write(path: &std::path::Path, text: &str) -> Result {
+    if let Some(parent) = path.parent() {
+        std::fs::create_dir_all(parent)
+            .map_err(|e| Failure::new(format!("creating {}: {e}", parent.display())))?;
+    }
+    std::fs::write(path, text).map_err(|e| Failure::new(format!("writing {}: {e}", path.display())))
+}

@@ -1,0 +1,279 @@
+//! Builds `bench-firmware/` per backend and profile, runs each image under QEMU with
+//! `-icount shift=0`, and turns its timer readings into instruction counts.
+
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::thread;
+use std::time::{Duration, Instant};
+
+use crate::cmd::{self, Failure, Result};
+use crate::tools;
+
+/// Instructions per tick of the 25 MHz CMSDK timer when QEMU runs one instruction per
+/// nanosecond of virtual time (`-icount shift=0`). The calibration blocks check it.
+pub const INSTRUCTIONS_PER_TICK: f64 = 40.0;
+
+/// A calibration block may miss its known length by at most this (instructions).
+const CALIBRATION_TOLERANCE: f64 = 0.5;
+
+const BIN: &str = "cuesight-bench";
+
+/// The QEMU command line (machine and CPU as in `firmware/`, plus instruction counting).
+pub const QEMU_ARGS: [&str; 10] = [
+    "-machine",
+    "mps2-an386",
+    "-cpu",
+    "cortex-m4",
+    "-nographic",
+    "-icount",
+    "shift=0",
+    "-semihosting-config",
+    "enable=on,target=native",
+    "-kernel",
+];
+
+/// One image of the bench firmware.
+pub struct Build {
+    /// Math backend (cargo feature of the core).
+    pub backend: &'static str,
+    /// Cargo profile (`release`: opt-level 3; `release-s`: opt-level "s", as shipped).
+    pub profile: &'static str,
+    /// Whether the image also prints every outcome on the whole grid.
+    pub outcomes: bool,
+}
+
+/// Every image measured: both backends at opt-level 3 with outcomes, and at
+/// opt-level "s" for the instruction counts only.
+pub const BUILDS: [Build; 4] = [
+    Build {
+        backend: "libm",
+        profile: "release",
+        outcomes: true,
+    },
+    Build {
+        backend: "micromath",
+        profile: "release",
+        outcomes: true,
+    },
+    Build {
+        backend: "libm",
+        profile: "release-s",
+        outcomes: false,
+    },
+    Build {
+        backend: "micromath",
+        profile: "release-s",
+        outcomes: false,
+    },
+];
+
+/// A calibration block as measured.
+pub struct Calibration {
+    pub name: String,
+    pub expected: f64,
+    pub measured: f64,
+}
+
+/// What one QEMU run measured.
+pub struct Run {
+    pub build: &'static Build,
+    /// The QEMU output (kept: the error scoring reads its `outcome` lines).
+    pub listing: PathBuf,
+    pub calibration: Vec<Calibration>,
+    /// Instructions per prediction on each counted scene, by (model label, precision),
+    /// in the order the firmware printed them.
+    pub counts: Vec<((String, String), Vec<f64>)>,
+}
+
+/// The bench firmware's directory (its own workspace, like `firmware/`).
+pub fn bench_firmware_dir() -> PathBuf {
+    cmd::root().join("bench-firmware")
+}
+
+/// The bench firmware's target directory (honours `CARGO_TARGET_DIR`).
+pub fn target_dir() -> PathBuf {
+    match std::env::var_os("CARGO_TARGET_DIR") {
+        Some(dir) => bench_firmware_dir().join(dir),
+        None => bench_firmware_dir().join("target"),
+    }
+}
+
+/// Builds every image with `scenes` baked in, runs them (in parallel: the counts are
+/// virtual time, so host load cannot change them) and parses the results.
+pub fn measure(scenes: &Path, dir: &Path, timeout: Duration) -> Result<Vec<Run>> {
+    let mut images = Vec::new();
+    for build in &BUILDS {
+        let mut features = build.backend.to_string();
+        if !build.outcomes {
+            features.push_str(",counts-only");
+        }
+        cmd::run(
+            cmd::cargo()
+                .args(["build", "--bin", BIN, "--profile", build.profile])
+                .args(["--no-default-features", "--features", &features])
+                .env("CUESIGHT_BENCH_SCENES", scenes)
+                .current_dir(bench_firmware_dir()),
+        )?;
+        let built = target_dir()
+            .join(tools::TARGET)
+            .join(build.profile)
+            .join(BIN);
+        let stem = format!("{BIN}-{}-{}", build.backend, build.profile);
+        let elf = dir.join(format!("{stem}.elf"));
+        std::fs::copy(&built, &elf)
+            .map_err(|e| Failure::new(format!("copying {}: {e}", built.display())))?;
+        images.push((
+            build,
+            elf,
+            dir.join(format!("qemu-{}-{}.txt", build.backend, build.profile)),
+        ));
+    }
+    let qemu_version = cmd::probe(Command::new("qemu-system-arm").arg("--version"))
+        .and_then(|v| v.lines().next().map(str::to_string))
+        .unwrap_or_default();
+    println!(
+        "xtask bench: {qemu_version}; running {} images",
+        images.len()
+    );
+    let started = Instant::now();
+    let results: Vec<Result> = thread::scope(|s| {
+        let handles: Vec<_> = images
+            .iter()
+            .map(|(_, elf, listing)| s.spawn(move || run_qemu(elf, listing, timeout)))
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| {
+                h.join()
+                    .unwrap_or_else(|_| Err(Failure::new("a QEMU thread panicked")))
+            })
+            .collect()
+    });
+    println!(
+        "xtask bench: QEMU runs done in {:.1} s",
+        started.elapsed().as_secs_f64()
+    );
+    let mut runs = Vec::new();
+    for ((build, _, listing), result) in images.into_iter().zip(results) {
+        result?;
+        runs.push(parse(build, listing)?);
+    }
+    Ok(runs)
+}
+
+/// Runs `elf` in QEMU with its stdout written to `listing`; fails on a non-zero exit
+/// or after `timeout`.
+fn run_qemu(elf: &Path, listing: &Path, timeout: Duration) -> Result {
+    let out = File::create(listing)
+        .map_err(|e| Failure::new(format!("creating {}: {e}", listing.display())))?;
+    let mut qemu = Command::new("qemu-system-arm");
+    qemu.args(QEMU_ARGS).arg(elf);
+    println!("$ {} > {}", cmd::display(&qemu), listing.display());
+    let mut child = qemu
+        .stdin(Stdio::null())
+        .stdout(out)
+        .spawn()
+        .map_err(|e| Failure::new(format!("cannot start qemu-system-arm: {e}")))?;
+    let deadline = Instant::now() + timeout;
+    loop {
+        match child.try_wait() {
+            Ok(Some(status)) => {
+                return cmd::check(&format!("qemu-system-arm {}", elf.display()), status)
+            }
+            Ok(None) if Instant::now() < deadline => thread::sleep(Duration::from_millis(50)),
+            _ => {
+                let _ = child.kill();
+                let _ = child.wait();
+                return Err(Failure {
+                    message: format!(
+                        "QEMU ({}) did not exit within {} s and was killed",
+                        elf.display(),
+                        timeout.as_secs()
+                    ),
+                    code: 124,
+                });
+            }
+        }
+    }
+}
+
+/// Parses the `calibration` and `count` lines of a run, checks the calibration and
+/// that the listing is complete.
+fn parse(build: &'static Build, listing: PathBuf) -> Result<Run> {
+    let text = std::fs::read_to_string(&listing)
+        .map_err(|e| Failure::new(format!("reading {}: {e}", listing.display())))?;
+    let at = |n: usize| format!("{}:{}", listing.display(), n + 1);
+    let number = |s: &str, n: usize| -> Result<f64> {
+        s.parse::<f64>()
+            .map_err(|_| Failure::new(format!("{}: bad number {s:?}", at(n))))
+    };
+    let mut calibration = Vec::new();
+    let mut counts: Vec<((String, String), Vec<f64>)> = Vec::new();
+    let mut index: BTreeMap<(String, String), usize> = BTreeMap::new();
+    let mut ended = false;
+    for (n, line) in text.lines().enumerate() {
+        let fields: Vec<&str> = line.split(' ').collect();
+        match fields[0] {
+            "calibration" if fields.len() >= 6 => {
+                let (expected, reps) = (number(fields[1], n)?, number(fields[2], n)?);
+                let (block, empty) = (number(fields[3], n)?, number(fields[4], n)?);
+                calibration.push(Calibration {
+                    name: fields[5..].join(" "),
+                    expected,
+                    measured: (block - empty) * INSTRUCTIONS_PER_TICK / reps,
+                });
+            }
+            "count" if fields.len() == 7 => {
+                let key = (fields[1].to_string(), fields[2].to_string());
+                let (reps, ticks, empty) = (
+                    number(fields[4], n)?,
+                    number(fields[5], n)?,
+                    number(fields[6], n)?,
+                );
+                let slot = *index.entry(key.clone()).or_insert_with(|| {
+                    counts.push((key, Vec::new()));
+                    counts.len() - 1
+                });
+                counts[slot]
+                    .1
+                    .push((ticks - empty) * INSTRUCTIONS_PER_TICK / reps);
+            }
+            "end" => ended = true,
+            _ => {}
+        }
+    }
+    if !ended {
+        return Err(Failure::new(format!(
+            "{}: the bench firmware's output ends early (no `end` line)",
+            listing.display()
+        )));
+    }
+    if calibration.is_empty() || counts.is_empty() {
+        return Err(Failure::new(format!(
+            "{}: no calibration or count lines",
+            listing.display()
+        )));
+    }
+    for c in &calibration {
+        if (c.measured - c.expected).abs() > CALIBRATION_TOLERANCE {
+            return Err(Failure::new(format!(
+                "calibration failed ({}, {} {}): '{}' should take {} instructions, measured {:.2}; \
+                 QEMU is not counting one instruction per virtual nanosecond",
+                listing.display(),
+                build.backend,
+                build.profile,
+                c.name,
+                c.expected,
+                c.measured
+            )));
+        }
+    }
+    Ok(Run {
+        build,
+        listing,
+        calibration,
+        counts,
+    })
+}
