@@ -1,0 +1,448 @@
+//! The low-speed limit of the impulsive approximation, measured: the time-domain solver
+//! (`cuesight_host::timed`: Hertz contact with hysteresis, gravity, table contacts)
+//! against the impulsive reference for speeds from 1 mm/s to 2 m/s (log-spaced) and
+//! representative spins, cuts and friction coefficients.
+//!
+//!     cargo run --release -p cuesight-host --example low_speed_sweep
+//!
+//! prints the tables of `docs/low-speed-limit.md`, writes the full sweep to
+//! `target/tmp/low-speed-sweep.csv` and redraws `docs/low-speed-limit.svg`.
+use cuesight_host::reference::BallState;
+use cuesight_host::timed::{
+    limit_speed, log_speeds, Comparison, Geometry, Material, Scenario, SpinKind, TimedConfig,
+    TimedParams, GRAVITY, POOL_MASS, POOL_RADIUS,
+};
+use glam::DVec3;
+use std::fmt::Write as _;
+
+const THRESHOLD: f64 = 0.01;
+const SPINS: [SpinKind; 4] = [
+    SpinKind::Stun,
+    SpinKind::Roll,
+    SpinKind::Draw,
+    SpinKind::Side,
+];
+const CUTS: [f64; 4] = [0.0, 30.0, 60.0, 85.0];
+const MUS: [f64; 3] = [0.05, 0.02, 0.1];
+
+/// Final rolling velocity on the cloth (TP A.4): `v − (2/7) u`, `u` the table-contact
+/// slip; unchanged by any friction at the table contact.
+fn rolling_velocity(b: &BallState) -> DVec3 {
+    let v = DVec3::new(b.velocity.x, b.velocity.y, 0.0);
+    let r_omega = DVec3::new(b.spin.y, -b.spin.x, 0.0) * POOL_RADIUS;
+    v * (5.0 / 7.0) + r_omega * (2.0 / 7.0)
+}
+
+/// The error measures of one comparison (fractions of U).
+#[derive(Clone, Copy, Default)]
+struct Measures {
+    /// `max(|Δv|/U, R|Δω|/U)`, full 3-vectors (the measure).
+    full: f64,
+    /// The same without the vertical velocities (hop).
+    in_plane: f64,
+    /// Largest change of a ball's final rolling velocity.
+    rolling: f64,
+}
+
+fn measures(c: &Comparison, speed: f64) -> Measures {
+    let t = [&c.timed.cue_ball, &c.timed.object_ball];
+    let r = [&c.reference.cue_ball, &c.reference.object_ball];
+    let mut m = Measures {
+        full: c.deviation.max(),
+        ..Default::default()
+    };
+    for i in 0..2 {
+        let dv = t[i].velocity - r[i].velocity;
+        let dw = POOL_RADIUS * (t[i].spin - r[i].spin).length();
+        m.in_plane = m.in_plane.max(dv.truncate().length()).max(dw);
+        m.rolling = m
+            .rolling
+            .max(rolling_velocity(t[i]).distance(rolling_velocity(r[i])));
+    }
+    m.in_plane /= speed;
+    m.rolling /= speed;
+    m
+}
+
+/// Name of the largest single component difference (velocity or R·spin).
+fn dominant(c: &Comparison) -> String {
+    let t = [&c.timed.cue_ball, &c.timed.object_ball];
+    let r = [&c.reference.cue_ball, &c.reference.object_ball];
+    let mut best = (0.0, String::new());
+    for (i, ball) in ["cue", "object"].iter().enumerate() {
+        let dv = (t[i].velocity - r[i].velocity).to_array();
+        let dw = ((t[i].spin - r[i].spin) * POOL_RADIUS).to_array();
+        for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+            if dv[k].abs() > best.0 {
+                best = (dv[k].abs(), format!("{ball} v_{axis}"));
+            }
+            if dw[k].abs() > best.0 {
+                best = (dw[k].abs(), format!("{ball} Rω_{axis}"));
+            }
+        }
+    }
+    best.1
+}
+
+fn run(s: &Scenario, p: &TimedParams, u: f64, cfg: &TimedConfig) -> Comparison {
+    s.compare_with(p, u, cfg).expect("valid scenario")
+}
+
+fn fmt_limit(l: Option<f64>, top: f64) -> String {
+    match l {
+        Some(u) if u >= top => format!("> 1 % at {top}"),
+        Some(u) => format!("{u:.3}"),
+        None => "< 0.001".to_string(),
+    }
+}
+
+/// Lowest speed at which an error that grows with speed reaches `threshold`
+/// (bisection on log U between the sampled speeds that bracket it).
+fn crossing_up(speeds: &[f64], threshold: f64, mut error: impl FnMut(f64) -> f64) -> Option<f64> {
+    let i = speeds.iter().position(|&u| error(u) > threshold)?;
+    if i == 0 {
+        return Some(speeds[0]);
+    }
+    let (mut lo, mut hi) = (speeds[i - 1], speeds[i]);
+    while hi / lo > 1.001 {
+        let mid = (lo * hi).sqrt();
+        if error(mid) > threshold {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Some((lo * hi).sqrt())
+}
+
+struct Row {
+    scenario: Scenario,
+    full: Option<f64>,
+    in_plane: Option<f64>,
+    rolling: Option<f64>,
+    moving: Option<f64>,
+    at_limit: String,
+    at_2: [f64; 2],
+    curve: Vec<f64>,
+}
+
+fn main() {
+    let speeds = log_speeds(0.001, 2.0, 10);
+    let fixed = TimedConfig::default();
+    let moving = TimedConfig {
+        geometry: Geometry::Moving,
+        ..fixed
+    };
+    let m = Material::PHENOLIC;
+    let mut out = String::new();
+
+    // Model constants and contact duration versus speed.
+    let _ = writeln!(
+        out,
+        "E = {:.1} GPa, ν = {}, E* = {:.3} GPa, R_eff = R/2 = {:.4} mm, k = {:.4e} N/m^1.5, g = {GRAVITY} m/s²\n",
+        m.youngs_modulus / 1e9,
+        m.poisson_ratio,
+        m.effective_modulus() / 1e9,
+        0.5 * POOL_RADIUS * 1e3,
+        m.stiffness(POOL_RADIUS)
+    );
+    let _ = writeln!(
+        out,
+        "| U (m/s) | duration, solver (μs) | Hertz formula (μs) | δ_m (μm) | peak force (N) | e* measured |\n|---|---|---|---|---|---|"
+    );
+    let frictionless = Scenario {
+        mu: 0.0,
+        mu_s: 0.0,
+        ..Scenario::pool(SpinKind::Stun, 0.0, 0.0)
+    };
+    for u in [0.001, 0.01, 0.1, 0.5, 1.0, 1.5, 2.0] {
+        let c = run(&frictionless, &frictionless.params(), u, &fixed);
+        let e = (c.timed.object_ball.velocity.x - c.timed.cue_ball.velocity.x) / u;
+        let _ = writeln!(
+            out,
+            "| {u} | {:.1} | {:.1} | {:.3} | {:.3} | {:.6} |",
+            c.timed.duration * 1e6,
+            m.duration(POOL_RADIUS, POOL_MASS, 0.95, u) * 1e6,
+            c.timed.max_indentation * 1e6,
+            c.timed.peak_force,
+            e
+        );
+    }
+
+    // The sweep.
+    let mut rows = Vec::new();
+    let mut csv =
+        String::from("spin,cut_deg,mu,speed,full,in_plane,rolling,moving_full,duration_us\n");
+    let mut convergence = 0.0f64;
+    let mut without_gravity = 0.0f64;
+    for &mu in &MUS {
+        for &spin in &SPINS {
+            for &cut in &CUTS {
+                let s = Scenario::pool(spin, cut, mu);
+                let p = s.params();
+                let mut curve = Vec::new();
+                for &u in &speeds {
+                    let c = run(&s, &p, u, &fixed);
+                    let me = measures(&c, u);
+                    let mv = run(&s, &p, u, &moving).deviation.max();
+                    let _ = writeln!(
+                        csv,
+                        "{},{cut},{mu},{u:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.2}",
+                        spin.label(),
+                        me.full,
+                        me.in_plane,
+                        me.rolling,
+                        mv,
+                        c.timed.duration * 1e6
+                    );
+                    curve.push(me.full);
+                    let fine = run(
+                        &s,
+                        &p,
+                        u,
+                        &TimedConfig {
+                            steps: 2 * fixed.steps,
+                            ..fixed
+                        },
+                    );
+                    let change = cuesight_host::timed::Deviation::between(
+                        [&c.timed.cue_ball, &c.timed.object_ball],
+                        [&fine.timed.cue_ball, &fine.timed.object_ball],
+                        u,
+                        POOL_RADIUS,
+                    );
+                    convergence = convergence.max(change.max());
+                    if u == speeds[0] || u == *speeds.last().unwrap() {
+                        let flat = TimedParams { gravity: 0.0, ..p };
+                        without_gravity =
+                            without_gravity.max(run(&s, &flat, u, &fixed).deviation.max());
+                    }
+                }
+                let (full, _) = limit_speed(&speeds, THRESHOLD, |u| {
+                    measures(&run(&s, &p, u, &fixed), u).full
+                });
+                let (in_plane, _) = limit_speed(&speeds, THRESHOLD, |u| {
+                    measures(&run(&s, &p, u, &fixed), u).in_plane
+                });
+                let (rolling, _) = limit_speed(&speeds, THRESHOLD, |u| {
+                    measures(&run(&s, &p, u, &fixed), u).rolling
+                });
+                let (mov, _) = limit_speed(&speeds, THRESHOLD, |u| {
+                    run(&s, &p, u, &moving).deviation.max()
+                });
+                let at_limit =
+                    full.map_or(String::from("—"), |u| dominant(&run(&s, &p, u, &fixed)));
+                let at_2 = [
+                    run(&s, &p, 2.0, &fixed).deviation.max(),
+                    run(&s, &p, 2.0, &moving).deviation.max(),
+                ];
+                rows.push(Row {
+                    scenario: s,
+                    full,
+                    in_plane,
+                    rolling,
+                    moving: mov,
+                    at_limit,
+                    at_2,
+                    curve,
+                });
+            }
+        }
+    }
+
+    let _ = writeln!(
+        out,
+        "\nSweep: {} speeds, {:.3}–{} m/s; e* = 0.95, μ_s = 0.3. U_1% = the speed below which the error exceeds 1 %.\n",
+        speeds.len(),
+        speeds[0],
+        speeds.last().unwrap()
+    );
+    let _ = writeln!(
+        out,
+        "| scenario | U_1% (m/s) | largest component there | U_1% without v_z | U_1% rolling velocity | U_1% moving normal | error at 2 m/s | moving normal at 2 m/s |\n|---|---|---|---|---|---|---|---|"
+    );
+    let top = *speeds.last().unwrap();
+    for r in &rows {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {} | {} | {} | {:.3} % | {:.3} % |",
+            r.scenario.label(),
+            fmt_limit(r.full, top),
+            r.at_limit,
+            fmt_limit(r.in_plane, top),
+            fmt_limit(r.rolling, top),
+            fmt_limit(r.moving, top),
+            100.0 * r.at_2[0],
+            100.0 * r.at_2[1]
+        );
+    }
+    let worst = |f: &dyn Fn(&Row) -> Option<f64>, mu: Option<f64>| {
+        rows.iter()
+            .filter(|r| mu.is_none_or(|m| r.scenario.mu == m))
+            .filter_map(f)
+            .filter(|&u| u < top)
+            .fold(0.0f64, f64::max)
+    };
+    let _ = writeln!(out, "\nOverall (largest U_1% over the scenarios):\n");
+    for (name, mu) in [
+        ("μ = 0.05", Some(0.05)),
+        ("μ = 0.02", Some(0.02)),
+        ("μ = 0.1", Some(0.1)),
+        ("all", None),
+    ] {
+        let _ = writeln!(
+            out,
+            "- {name}: full {:.3} m/s, without v_z {:.3} m/s, rolling velocity {:.3} m/s, moving normal {:.3} m/s",
+            worst(&|r: &Row| r.full, mu),
+            worst(&|r: &Row| r.in_plane, mu),
+            worst(&|r: &Row| r.rolling, mu),
+            worst(&|r: &Row| r.moving, mu)
+        );
+    }
+    let _ = writeln!(
+        out,
+        "- largest error at 2 m/s: fixed normal {:.3} %, moving normal {:.3} %",
+        100.0 * rows.iter().map(|r| r.at_2[0]).fold(0.0, f64::max),
+        100.0 * rows.iter().map(|r| r.at_2[1]).fold(0.0, f64::max)
+    );
+    let _ = writeln!(
+        out,
+        "- step halving ({} → {} steps per contact), largest change over the sweep: {convergence:.2e} U",
+        fixed.steps,
+        2 * fixed.steps
+    );
+    let _ = writeln!(
+        out,
+        "- g = 0 (at 0.001 and 2 m/s), largest difference from the reference: {without_gravity:.2e} U"
+    );
+
+    // The line of centres turns during a cut (moving normal), an error that grows with
+    // speed: where it reaches 1 % and 0.5 %, gravity off so that it is alone.
+    let _ = writeln!(
+        out,
+        "\nMoving normal, g = 0 (stun, μ = 0.05): speed above which it differs from the reference by more than\n\n| cut | error at 2 m/s | 0.5 % above (m/s) | 1 % above (m/s) |\n|---|---|---|---|"
+    );
+    let fast = log_speeds(0.5, 32.0, 10);
+    for cut in [30.0, 45.0, 60.0, 85.0] {
+        let s = Scenario::pool(SpinKind::Stun, cut, 0.05);
+        let p = TimedParams {
+            gravity: 0.0,
+            ..s.params()
+        };
+        let err = |u: f64| run(&s, &p, u, &moving).deviation.max();
+        let show = |l: Option<f64>| l.map_or(String::from("> 32"), |u| format!("{u:.2}"));
+        let _ = writeln!(
+            out,
+            "| {cut}° | {:.3} % | {} | {} |",
+            100.0 * err(2.0),
+            show(crossing_up(&fast, 0.005, err)),
+            show(crossing_up(&fast, 0.01, err))
+        );
+    }
+
+    // Sensitivity of the overall limit (μ = 0.05 scenarios) to E and μ_s.
+    let _ = writeln!(
+        out,
+        "\nSensitivity (μ = 0.05, the 16 scenarios; overall U_1%, full measure):\n\n| variant | duration at 1 m/s (μs) | overall U_1% (m/s) |\n|---|---|---|"
+    );
+    let variants: [(&str, f64, f64, f64); 6] = [
+        ("base: E = 11 GPa, μ_s = 0.3", 1.0, 0.3, 0.0),
+        ("E / 2", 0.5, 0.3, 0.0),
+        ("E × 2", 2.0, 0.3, 0.0),
+        ("μ_s = 0.2", 1.0, 0.2, 0.0),
+        ("μ_s = 0.4", 1.0, 0.4, 0.0),
+        ("cue-ball/table friction 0.2 (both solvers)", 1.0, 0.3, 0.2),
+    ];
+    for (name, e_factor, mu_s, cue_table) in variants {
+        let material = Material {
+            youngs_modulus: m.youngs_modulus * e_factor,
+            ..m
+        };
+        let mut overall = 0.0f64;
+        for &spin in &SPINS {
+            for &cut in &CUTS {
+                let s = Scenario {
+                    mu_s,
+                    ..Scenario::pool(spin, cut, 0.05)
+                };
+                let mut p = TimedParams {
+                    material,
+                    ..s.params()
+                };
+                p.contact.cue_table_friction = cue_table;
+                let (l, _) = limit_speed(&speeds, THRESHOLD, |u| {
+                    run(&s, &p, u, &fixed).deviation.max()
+                });
+                overall = overall.max(l.unwrap_or(0.0));
+            }
+        }
+        let _ = writeln!(
+            out,
+            "| {name} | {:.0} | {overall:.3} |",
+            material.duration(POOL_RADIUS, POOL_MASS, 0.95, 1.0) * 1e6
+        );
+    }
+    print!("{out}");
+
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let tmp = root.join("target/tmp");
+    std::fs::create_dir_all(&tmp).expect("target/tmp");
+    std::fs::write(tmp.join("low-speed-sweep.csv"), csv).expect("write csv");
+    std::fs::write(tmp.join("low-speed-limit.txt"), &out).expect("write report");
+    std::fs::write(root.join("docs/low-speed-limit.svg"), svg(&speeds, &rows)).expect("write svg");
+    eprintln!("wrote target/tmp/low-speed-sweep.csv, target/tmp/low-speed-limit.txt, docs/low-speed-limit.svg");
+}
+
+/// Log–log plot of the error against speed for the μ = 0.05 scenarios.
+fn svg(speeds: &[f64], rows: &[Row]) -> String {
+    let (w, h, left, right, top, bottom) = (760.0, 500.0, 70.0, 190.0, 20.0, 50.0);
+    let (x0, x1) = (speeds[0].log10(), speeds.last().unwrap().log10());
+    let (y0, y1) = (-4.0f64, 0.0f64);
+    let px = |u: f64| left + (u.log10() - x0) / (x1 - x0) * (w - left - right);
+    let py = |e: f64| top + (y1 - e.max(1e-4).log10()) / (y1 - y0) * (h - top - bottom);
+    let mut s = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+    );
+    for d in -3..=0 {
+        let u = 10f64.powi(d);
+        let x = px(u);
+        let _ = writeln!(s, "<line x1=\"{x:.1}\" y1=\"{top}\" x2=\"{x:.1}\" y2=\"{:.1}\" stroke=\"#ddd\"/><text x=\"{x:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{u}</text>", h - bottom, h - bottom + 16.0);
+    }
+    for d in -4..=0 {
+        let e = 10f64.powi(d);
+        let y = py(e);
+        let _ = writeln!(s, "<line x1=\"{left}\" y1=\"{y:.1}\" x2=\"{:.1}\" y2=\"{y:.1}\" stroke=\"#ddd\"/><text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}%</text>", w - right, left - 6.0, y + 4.0, 100.0 * e);
+    }
+    let y = py(THRESHOLD);
+    let _ = writeln!(s, "<line x1=\"{left}\" y1=\"{y:.1}\" x2=\"{:.1}\" y2=\"{y:.1}\" stroke=\"black\" stroke-dasharray=\"4 3\"/>", w - right);
+    let _ = writeln!(
+        s,
+        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">cue-ball speed U (m/s)</text>",
+        0.5 * (left + w - right),
+        h - 10.0
+    );
+    let _ = writeln!(s, "<text transform=\"translate(16 {:.1}) rotate(-90)\" text-anchor=\"middle\">max(|Δv|, R|Δω|) / U, time-domain vs impulsive</text>", 0.5 * (top + h - bottom));
+    let colours = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd"];
+    let dashes = ["", "8 3", "3 3", "1 3"];
+    for (legend, r) in rows.iter().filter(|r| r.scenario.mu == 0.05).enumerate() {
+        let ci = SPINS.iter().position(|k| *k == r.scenario.spin).unwrap();
+        let di = CUTS.iter().position(|c| *c == r.scenario.cut_deg).unwrap();
+        let points: Vec<String> = speeds
+            .iter()
+            .zip(&r.curve)
+            .map(|(&u, &e)| format!("{:.1},{:.1}", px(u), py(e)))
+            .collect();
+        let _ = writeln!(
+            s,
+            "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" stroke-dasharray=\"{}\" points=\"{}\"/>",
+            colours[ci],
+            dashes[di],
+            points.join(" ")
+        );
+        let ly = top + 14.0 + 16.0 * legend as f64;
+        let lx = w - right + 12.0;
+        let _ = writeln!(s, "<line x1=\"{lx}\" y1=\"{ly}\" x2=\"{:.1}\" y2=\"{ly}\" stroke=\"{}\" stroke-width=\"1.5\" stroke-dasharray=\"{}\"/><text x=\"{:.1}\" y=\"{:.1}\">{}</text>", lx + 28.0, colours[ci], dashes[di], lx + 34.0, ly + 4.0, r.scenario.label());
+    }
+    s.push_str("</svg>\n");
+    s
+}
