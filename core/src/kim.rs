@@ -28,16 +28,11 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
     let scale = R::max(R::abs(slip_y), R::abs(slip_z));
     if law.is_frictionless() || scale == R::ZERO {
         // No friction, or no slip and so no friction direction (exact gearing).
-        let regime = if law.is_frictionless() {
-            Regime::Frictionless
-        } else {
-            Regime::Gripping
-        };
-        return Outcome::from_impulses(
+        return Outcome::without_friction(
             params,
             impact,
-            SpecificImpulses::normal_only(frictionless_normal),
-            regime,
+            frictionless_normal,
+            law.is_frictionless(),
         );
     }
     // Unit slip direction, scaled first so that tiny slips cannot underflow.

@@ -59,16 +59,12 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
     let (slip_y, slip_z) = initial_slip::<R>(params, impact);
     let scale = R::max(R::abs(slip_y), R::abs(slip_z));
     if law.is_frictionless() || scale == R::ZERO {
-        let regime = if law.is_frictionless() {
-            Regime::Frictionless
-        } else {
-            Regime::Gripping
-        };
-        return Outcome::from_impulses(
+        // No friction, or no slip and so no friction direction (exact gearing).
+        return Outcome::without_friction(
             params,
             impact,
-            SpecificImpulses::normal_only(frictionless_normal),
-            regime,
+            frictionless_normal,
+            law.is_frictionless(),
         );
     }
 
@@ -101,12 +97,7 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
     let slip = TangentialSlip::new(slip_y, slip_z, scale, k_yz, k_z);
     if slip.stick_budget == R::ZERO {
         // A slip so small that the impulse cancelling it underflows: exact gearing.
-        return Outcome::from_impulses(
-            params,
-            impact,
-            SpecificImpulses::normal_only(frictionless_normal),
-            Regime::Gripping,
-        );
+        return Outcome::without_friction(params, impact, frictionless_normal, false);
     }
     let slip_speed = slip.unit_norm * scale;
     // Effective compliance along the slip path, k̄ = |v₀| / s* (see `friction`).

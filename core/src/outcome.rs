@@ -105,6 +105,28 @@ pub struct Outcome {
 }
 
 impl Outcome {
+    /// The outcome when no friction acts: `μ = 0` ([`Regime::Frictionless`]) or no
+    /// initial slip and so no friction direction (exact gearing, [`Regime::Gripping`]).
+    /// `normal` is the specific normal impulse `(1 + e*) U_x / 2` (m/s).
+    pub(crate) fn without_friction<R: Real>(
+        params: &Params,
+        impact: &Impact,
+        normal: R,
+        frictionless: bool,
+    ) -> Self {
+        let regime = if frictionless {
+            Regime::Frictionless
+        } else {
+            Regime::Gripping
+        };
+        Self::from_impulses(
+            params,
+            impact,
+            SpecificImpulses::normal_only(normal),
+            regime,
+        )
+    }
+
     /// Assemble both balls' final states from the impulses `j` (all per unit mass, m/s).
     ///
     /// This is plain rigid-body bookkeeping (`M ΔV = ΣJ`, `I Δω = Σ r × J`, seed eqs.
