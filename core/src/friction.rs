@@ -91,8 +91,14 @@ impl FrictionLaw {
                 if c == R::ZERO {
                     return (from - to) / ((a + b) * compliance);
                 }
-                let ratio = (a + b * R::exp(-c * from)) / (a + b * R::exp(-c * to));
-                ((from - to) + R::ln(ratio) / c) / (a * compliance)
+                // ln((a + b e^{−c v₀}) / (a + b e^{−c v})) written as ln(1 + q) with
+                // q = b e^{−c v} (e^{−c δ} − 1) / (a + b e^{−c v}), δ = v₀ − v ≥ 0, so that
+                // a tiny slip change keeps its digits (the two terms below nearly cancel
+                // to δ a / (a + b e^{−c v}) when c δ is small).
+                let delta = R::max(from - to, R::ZERO);
+                let decay = b * R::exp(-c * to);
+                let q = decay * R::exp_m1(-c * delta) / (a + decay);
+                R::max(delta + R::ln_1p(q) / c, R::ZERO) / (a * compliance)
             }
         }
     }

@@ -128,6 +128,41 @@ pub fn ln(x: f32) -> f32 {
     }
 }
 
+/// `e^x − 1`, accurate near zero. Only for the speed-dependent friction law.
+#[inline]
+pub fn exp_m1(x: f32) -> f32 {
+    #[cfg(feature = "libm")]
+    {
+        libm::expm1f(x)
+    }
+    #[cfg(feature = "micromath")]
+    {
+        // Taylor series where `exp(x) − 1` would cancel (error < x⁴/24 ≤ 4e-14).
+        if abs(x) < 1e-3 {
+            x * (1.0 + x * (0.5 + x / 6.0))
+        } else {
+            x.exp() - 1.0
+        }
+    }
+}
+
+/// `ln(1 + x)`, accurate near zero. Only for the speed-dependent friction law.
+#[inline]
+pub fn ln_1p(x: f32) -> f32 {
+    #[cfg(feature = "libm")]
+    {
+        libm::log1pf(x)
+    }
+    #[cfg(feature = "micromath")]
+    {
+        if abs(x) < 1e-3 {
+            x * (1.0 - x * (0.5 - x / 3.0))
+        } else {
+            (1.0 + x).ln()
+        }
+    }
+}
+
 /// Four-quadrant arctangent of `y / x` in radians, in `[-π, π]`. Reporting only.
 #[inline]
 pub fn atan2(y: f32, x: f32) -> f32 {

@@ -33,6 +33,10 @@ pub trait Real:
     fn exp(x: Self) -> Self;
     /// Natural logarithm.
     fn ln(x: Self) -> Self;
+    /// `e^x − 1`, accurate near zero.
+    fn exp_m1(x: Self) -> Self;
+    /// `ln(1 + x)`, accurate near zero.
+    fn ln_1p(x: Self) -> Self;
     /// Larger of two (non-NaN) values, by comparison.
     fn max(a: Self, b: Self) -> Self {
         if a > b {
@@ -78,6 +82,14 @@ impl Real for f32 {
     fn ln(x: Self) -> Self {
         crate::math::ln(x)
     }
+    #[inline(always)]
+    fn exp_m1(x: Self) -> Self {
+        crate::math::exp_m1(x)
+    }
+    #[inline(always)]
+    fn ln_1p(x: Self) -> Self {
+        crate::math::ln_1p(x)
+    }
 }
 
 #[cfg(feature = "libm")]
@@ -107,5 +119,13 @@ impl Real for f64 {
     #[inline(always)]
     fn ln(x: Self) -> Self {
         libm::log(x)
+    }
+    #[inline(always)]
+    fn exp_m1(x: Self) -> Self {
+        libm::expm1(x)
+    }
+    #[inline(always)]
+    fn ln_1p(x: Self) -> Self {
+        libm::log1p(x)
     }
 }
