@@ -6,5 +6,7 @@ pub mod firmware;
 pub mod grid;
 pub mod reference;
 pub mod report;
+pub mod shot_cli;
 pub mod strokes;
+pub mod svg;
 pub mod timed;

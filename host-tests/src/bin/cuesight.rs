@@ -26,6 +26,15 @@ enum Command {
     /// y = z × x. SI units: m, s, kg, rad/s; angles in degrees. Exit codes: 0 ok,
     /// 1 invalid physical value, 2 usage error.
     Collide(CollideArgs),
+    /// Shot guidance: where to aim to pocket a ball, and where both balls go.
+    ///
+    /// Scene from a TOML or JSON file (--scene) and/or flags (flags override the file).
+    /// Table frame: x along the length, y across, origin at a corner of the playing
+    /// surface; metres, m/s, degrees counter-clockwise from +x. With --solve, or with a
+    /// pocket and no aim, solves the aim (throw included) and reports its correction
+    /// against the ghost-ball aim; with --aim, plays it. Exit codes: 0 ok, 1 invalid
+    /// value or no aim found, 2 usage error. See docs/shot-cli.md.
+    Shot(cuesight_host::shot_cli::Flags),
 }
 
 #[derive(Args)]
@@ -84,7 +93,10 @@ fn main() -> ExitCode {
             return ExitCode::from(cli::EXIT_USAGE);
         }
     };
-    let Command::Collide(args) = parsed.command;
+    let args = match parsed.command {
+        Command::Collide(args) => args,
+        Command::Shot(flags) => return cuesight_host::shot_cli::main(&flags),
+    };
     let request = Collide {
         speed: args.speed,
         cut: args.cut,

@@ -1,0 +1,421 @@
+//! SVG drawing of a played shot (`cuesight shot --svg FILE`): the table (rails, cloth,
+//! pocket mouths and their target segments), every ball, the ghost ball, the cue ball's
+//! path before and after the contact, the object ball's path, and the chosen pocket.
+//!
+//! Written as text (no drawing crate: a few dozen elements do not need one). The table
+//! is drawn with `x` to the right and `y` up, 1000 px along its length. Post-impact
+//! paths are sampled from [`Motion::position_at`], so the sliding parabola shows its
+//! curve; a hop (the ball in the air) is a dashed segment. Elements carry ids and
+//! classes (`cloth`, `pocket-N`, `ball-N`, `ghost-ball`, `cue-path-before`,
+//! `cue-path-after`, `cue-hop`, `object-path`, `object-hop`, `chosen`) for tests and
+//! styling.
+
+use std::fmt::Write;
+
+use cuesight::table::Table;
+use cuesight::travel::Motion;
+use cuesight::Vec3;
+
+use crate::shot_cli::{End, PathEnd, Played};
+
+/// Drawn length of the table (px).
+const TABLE_PX: f32 = 1000.0;
+/// Rail width (m).
+const RAIL: f32 = 0.1;
+/// Caption line height (px).
+const LINE: f32 = 18.0;
+/// Points per sampled path.
+const SAMPLES: usize = 120;
+
+/// Metres on the table to pixels.
+struct Frame {
+    scale: f32,
+    margin: f32,
+    width: f32,
+    radius: f32,
+}
+
+impl Frame {
+    fn x(&self, x: f32) -> f32 {
+        self.margin + x * self.scale
+    }
+    fn y(&self, y: f32) -> f32 {
+        self.margin + (self.width - y) * self.scale
+    }
+    fn len(&self, l: f32) -> f32 {
+        l * self.scale
+    }
+    fn points(&self, points: &[Vec3]) -> String {
+        let mut out = String::new();
+        for (i, p) in points.iter().enumerate() {
+            if i > 0 {
+                out.push(' ');
+            }
+            let _ = write!(out, "{:.1},{:.1}", self.x(p.x), self.y(p.y));
+        }
+        out
+    }
+}
+
+/// Escape text for element content and attribute values.
+fn escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// Split a caption line at `; ` or `, ` so that each piece fits the drawing
+/// (continuations indented).
+fn wrap(line: &str) -> Vec<String> {
+    const WIDTH: usize = 140;
+    let mut out = Vec::new();
+    let mut text = line.to_owned();
+    loop {
+        if text.chars().count() <= WIDTH {
+            out.push(text);
+            return out;
+        }
+        let limit = text
+            .char_indices()
+            .nth(WIDTH)
+            .map_or(text.len(), |(i, _)| i);
+        let cut = text[..limit]
+            .rfind("; ")
+            .or_else(|| text[..limit].rfind(", "))
+            .filter(|&i| i > 4)
+            .map_or(limit, |i| i + 1);
+        out.push(text[..cut].to_owned());
+        text = format!("    {}", text[cut..].trim_start());
+    }
+}
+
+/// `motion`'s centre at `n + 1` times evenly spread over `[from, to]`, plus the phase
+/// changes inside that span (so the joins between flight, sliding and rolling are drawn
+/// exactly).
+fn sample(motion: &Motion, from: f32, to: f32, n: usize) -> Vec<Vec3> {
+    let mut times: Vec<f32> = (0..=n)
+        .map(|i| from + (to - from) * i as f32 / n as f32)
+        .collect();
+    for t in [motion.air_time, motion.air_time + motion.sliding_time] {
+        if t > from && t < to {
+            times.push(t);
+        }
+    }
+    times.sort_by(f32::total_cmp);
+    times.into_iter().map(|t| motion.position_at(t)).collect()
+}
+
+/// Draw a ball's motion up to `end`: the hop dashed (`{name}-hop`), then the cloth path
+/// (`{path_id}`), then its end marker.
+fn motion_path(
+    svg: &mut String,
+    f: &Frame,
+    motion: &Motion,
+    end: &PathEnd,
+    (name, path_id, colour): (&str, &str, &str),
+) {
+    let air = motion.air_time.min(end.time);
+    if air > 0.0 {
+        let _ = writeln!(
+            svg,
+            r#"<polyline id="{name}-hop" class="path hop" points="{}" fill="none" stroke="{colour}" stroke-width="2.5" stroke-dasharray="6 4"/>"#,
+            f.points(&[motion.position_at(0.0), motion.position_at(air)])
+        );
+    }
+    if end.time > air {
+        let _ = writeln!(
+            svg,
+            r#"<polyline id="{path_id}" class="path" points="{}" fill="none" stroke="{colour}" stroke-width="2.5" stroke-linejoin="round"/>"#,
+            f.points(&sample(motion, air, end.time, SAMPLES))
+        );
+    }
+    let at = motion.position_at(end.time);
+    match end.end {
+        End::Rest => {
+            let _ = writeln!(
+                svg,
+                r#"<circle id="{name}-rest" class="rest" cx="{:.1}" cy="{:.1}" r="{:.1}" fill="none" stroke="{colour}" stroke-width="1.5" stroke-dasharray="3 3"/>"#,
+                f.x(at.x),
+                f.y(at.y),
+                f.len(f.radius)
+            );
+        }
+        End::Cushion => {
+            let (x, y, d) = (f.x(at.x), f.y(at.y), 0.5 * f.len(f.radius));
+            let _ = writeln!(
+                svg,
+                r#"<path id="{name}-cushion" class="cushion-stop" d="M{:.1},{:.1} L{:.1},{:.1} M{:.1},{:.1} L{:.1},{:.1}" stroke="{colour}" stroke-width="2.5"/>"#,
+                x - d,
+                y - d,
+                x + d,
+                y + d,
+                x - d,
+                y + d,
+                x + d,
+                y - d
+            );
+        }
+        End::Pocket => {}
+    }
+}
+
+/// Draw the table's pockets: mouths, target segments, and the chosen one highlighted.
+fn pockets(svg: &mut String, f: &Frame, table: &Table, chosen: Option<usize>) {
+    let (length, width) = (table.length(), table.width());
+    for (i, p) in table.pockets().iter().enumerate() {
+        let mouth = (p.b - p.a).length();
+        let centre = p.centre();
+        let is_side = centre.x > length / 3.0 && centre.x < 2.0 * length / 3.0;
+        // A circle through the two jaws, centred on the rail corner (corner pockets) or
+        // a little behind the rail line (side pockets).
+        let (hole, hole_radius) = if is_side {
+            let y = if centre.y < 0.5 * width {
+                -0.2 * mouth
+            } else {
+                width + 0.2 * mouth
+            };
+            (
+                Vec3::new(0.5 * length, y, 0.0),
+                (0.25 * mouth * mouth + 0.04 * mouth * mouth).sqrt(),
+            )
+        } else {
+            let corner = Vec3::new(
+                if centre.x < 0.5 * length { 0.0 } else { length },
+                if centre.y < 0.5 * width { 0.0 } else { width },
+                0.0,
+            );
+            (corner, mouth * core::f32::consts::FRAC_1_SQRT_2)
+        };
+        let class = if chosen == Some(i) {
+            "pocket chosen"
+        } else {
+            "pocket"
+        };
+        let _ = writeln!(svg, r#"<g id="pocket-{i}" class="{class}">"#);
+        let _ = writeln!(
+            svg,
+            r##"<circle class="pocket-mouth" cx="{:.1}" cy="{:.1}" r="{:.1}" fill="#111"/>"##,
+            f.x(hole.x),
+            f.y(hole.y),
+            f.len(hole_radius)
+        );
+        let (stroke, width_px) = if chosen == Some(i) {
+            ("#ffd400", 4.0)
+        } else {
+            ("#9fd3a6", 1.5)
+        };
+        let _ = writeln!(
+            svg,
+            r#"<line class="pocket-target" x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="{stroke}" stroke-width="{width_px}" stroke-dasharray="4 3"/>"#,
+            f.x(p.a.x),
+            f.y(p.a.y),
+            f.x(p.b.x),
+            f.y(p.b.y)
+        );
+        if chosen == Some(i) {
+            let _ = writeln!(
+                svg,
+                r#"<circle class="pocket-highlight" cx="{:.1}" cy="{:.1}" r="{:.1}" fill="none" stroke="{stroke}" stroke-width="3"/>"#,
+                f.x(hole.x),
+                f.y(hole.y),
+                f.len(hole_radius) + 4.0
+            );
+        }
+        let _ = writeln!(svg, "</g>");
+    }
+}
+
+/// The SVG document for a played shot.
+pub fn render(played: &Played) -> String {
+    let scene = &played.request.scene;
+    let table = scene.table();
+    let radius = scene.radius();
+    let report = &played.report;
+    let scale = TABLE_PX / table.length();
+    let margin = RAIL * scale + 10.0;
+    let f = Frame {
+        scale,
+        margin,
+        width: table.width(),
+        radius,
+    };
+    let caption: Vec<String> = report.to_string().lines().flat_map(wrap).collect();
+    let width_px = 2.0 * margin + TABLE_PX;
+    let table_px = 2.0 * margin + table.width() * scale;
+    let height_px = table_px + LINE * caption.len() as f32 + 10.0;
+
+    let mut svg = String::new();
+    let _ = writeln!(svg, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
+    let _ = writeln!(
+        svg,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width_px:.0}" height="{height_px:.0}" viewBox="0 0 {width_px:.0} {height_px:.0}" font-family="sans-serif">"#
+    );
+    let _ = writeln!(
+        svg,
+        "<title>cuesight shot: {}</title>",
+        escape(caption.get(2).map_or("", String::as_str))
+    );
+    let _ = writeln!(
+        svg,
+        r##"<rect id="background" x="0" y="0" width="{width_px:.0}" height="{height_px:.0}" fill="#ffffff"/>"##
+    );
+    // Rails and cloth.
+    let _ = writeln!(
+        svg,
+        r##"<rect id="rail" x="{:.1}" y="{:.1}" width="{:.1}" height="{:.1}" rx="8" fill="#5b3a1e"/>"##,
+        f.x(-RAIL),
+        f.y(table.width() + RAIL),
+        f.len(table.length() + 2.0 * RAIL),
+        f.len(table.width() + 2.0 * RAIL)
+    );
+    let _ = writeln!(
+        svg,
+        r##"<rect id="cloth" x="{:.1}" y="{:.1}" width="{:.1}" height="{:.1}" fill="#1f7a3a"/>"##,
+        f.x(0.0),
+        f.y(table.width()),
+        f.len(table.length()),
+        f.len(table.width())
+    );
+    let chosen = report.target.as_ref().map(|t| t.pocket);
+    pockets(&mut svg, &f, table, chosen);
+
+    // Paths.
+    let shot = &played.shot;
+    match &shot.contact {
+        Some(contact) => {
+            let before = PathEnd {
+                time: contact.time,
+                end: End::Pocket, // no end marker: the contact is drawn as the ghost ball
+                pocket: None,
+            };
+            motion_path(
+                &mut svg,
+                &f,
+                &shot.cue_before,
+                &before,
+                ("cue-before", "cue-path-before", "#ffffff"),
+            );
+            motion_path(
+                &mut svg,
+                &f,
+                &contact.cue_after,
+                &played.cue_end,
+                ("cue", "cue-path-after", "#e8e8ff"),
+            );
+            if let Some(end) = &played.object_end {
+                motion_path(
+                    &mut svg,
+                    &f,
+                    &contact.object_after,
+                    end,
+                    ("object", "object-path", "#ffd400"),
+                );
+            }
+        }
+        None => motion_path(
+            &mut svg,
+            &f,
+            &shot.cue_before,
+            &played.cue_end,
+            ("cue", "cue-path-before", "#ffffff"),
+        ),
+    }
+
+    // Ghost balls and the line of centres.
+    if let Some(solution) = &played.solution {
+        let g = solution.naive_ghost_ball;
+        let _ = writeln!(
+            svg,
+            r##"<circle id="naive-ghost-ball" cx="{:.1}" cy="{:.1}" r="{:.1}" fill="none" stroke="#bbbbbb" stroke-width="1" stroke-dasharray="2 3"/>"##,
+            f.x(g.x),
+            f.y(g.y),
+            f.len(radius)
+        );
+    }
+    if let Some(contact) = &shot.contact {
+        let g = contact.cue_position;
+        let o = scene.balls()[contact.object_ball];
+        let _ = writeln!(
+            svg,
+            r##"<line id="line-of-centres" x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#ffffff" stroke-width="1" stroke-opacity="0.6"/>"##,
+            f.x(g.x),
+            f.y(g.y),
+            f.x(o.x),
+            f.y(o.y)
+        );
+        let _ = writeln!(
+            svg,
+            r##"<circle id="ghost-ball" cx="{:.1}" cy="{:.1}" r="{:.1}" fill="#ffffff" fill-opacity="0.15" stroke="#ffffff" stroke-width="1.5" stroke-dasharray="4 3"/>"##,
+            f.x(g.x),
+            f.y(g.y),
+            f.len(radius)
+        );
+    }
+
+    // Balls.
+    let object = shot
+        .contact
+        .as_ref()
+        .map(|c| c.object_ball)
+        .or(report.target.as_ref().map(|t| t.object));
+    for (i, b) in scene.balls().iter().enumerate() {
+        let (class, fill) = match i {
+            0 => ("ball cue", "#fbfbf4"),
+            i if Some(i) == object => ("ball object", "#ffd400"),
+            _ => ("ball", "#c0392b"),
+        };
+        let _ = writeln!(
+            svg,
+            r##"<circle id="ball-{i}" class="{class}" cx="{:.1}" cy="{:.1}" r="{:.1}" fill="{fill}" stroke="#222" stroke-width="1"/>"##,
+            f.x(b.x),
+            f.y(b.y),
+            f.len(radius)
+        );
+        if i > 0 {
+            let label = f.len(radius).max(8.0);
+            let _ = writeln!(
+                svg,
+                r##"<text class="ball-label" x="{:.1}" y="{:.1}" font-size="{:.0}" text-anchor="middle" fill="#111">{i}</text>"##,
+                f.x(b.x),
+                f.y(b.y) + 0.35 * label,
+                label
+            );
+        }
+    }
+
+    // Caption: the guidance text.
+    let _ = writeln!(svg, r##"<g id="caption" font-size="13" fill="#222">"##);
+    for (i, line) in caption.iter().enumerate() {
+        // Leading spaces mark a continuation: indent it (SVG collapses the spaces).
+        let text = line.trim_start();
+        let x = if text.len() < line.len() { 34 } else { 10 };
+        let _ = writeln!(
+            svg,
+            r#"<text x="{x}" y="{:.1}">{}</text>"#,
+            table_px + LINE * (i as f32 + 0.8),
+            escape(text)
+        );
+    }
+    let _ = writeln!(svg, "</g>");
+    let _ = writeln!(svg, "</svg>");
+    svg
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn escapes_markup() {
+        assert_eq!(escape("a<b & \"c\">"), "a&lt;b &amp; &quot;c&quot;&gt;");
+    }
+}
