@@ -76,7 +76,9 @@ pub fn run(args: &Args) -> Result {
     host::write_scenes(args.seed, args.scenes, args.counted, &scenes)?;
 
     section("bench firmware under QEMU (-icount shift=0)");
-    let runs = firmware::measure(&scenes, &dir, Duration::from_secs(args.timeout))?;
+    let timeout = Duration::from_secs(args.timeout);
+    let runs = firmware::measure(&scenes, &dir, timeout)?;
+    let trace_check = firmware::trace_check(&scenes, &dir, timeout)?;
 
     section("errors against the reference");
     let listings: Vec<PathBuf> = runs
@@ -99,6 +101,7 @@ pub fn run(args: &Args) -> Result {
         scenes: args.scenes,
         counted: args.counted,
         runs: &runs,
+        trace_check: &trace_check,
         errors: &errors,
         timings: timings.as_ref(),
     };

@@ -166,10 +166,16 @@ pub fn measure(scenes: &Path, dir: &Path, timeout: Duration) -> Result<Vec<Run>>
 /// Runs `elf` in QEMU with its stdout written to `listing`; fails on a non-zero exit
 /// or after `timeout`.
 fn run_qemu(elf: &Path, listing: &Path, timeout: Duration) -> Result {
+    run_qemu_with(&[], elf, listing, timeout)
+}
+
+/// As [`run_qemu`], with `extra` QEMU options.
+fn run_qemu_with(extra: &[&str], elf: &Path, listing: &Path, timeout: Duration) -> Result {
     let out = File::create(listing)
         .map_err(|e| Failure::new(format!("creating {}: {e}", listing.display())))?;
     let mut qemu = Command::new("qemu-system-arm");
-    qemu.args(QEMU_ARGS).arg(elf);
+    let (options, kernel) = QEMU_ARGS.split_at(QEMU_ARGS.len() - 1);
+    qemu.args(options).args(extra).args(kernel).arg(elf);
     println!("$ {} > {}", cmd::display(&qemu), listing.display());
     let mut child = qemu
         .stdin(Stdio::null())
@@ -197,6 +203,121 @@ fn run_qemu(elf: &Path, listing: &Path, timeout: Duration) -> Result {
             }
         }
     }
+}
+
+/// The timer method against an instruction trace, on one `KimGrip` prediction.
+pub struct TraceCheck {
+    /// Instructions per prediction from the timer (prediction minus empty call).
+    pub timer: f64,
+    /// Traced instructions of one call of the measured function (most frequent length).
+    pub call: u64,
+    /// Traced instructions of one call of the empty function.
+    pub empty: u64,
+}
+
+/// Runs `bench-firmware`'s `trace-check` image with QEMU logging every instruction
+/// (`-accel tcg,one-insn-per-tb=on -d exec,nochain`) and checks that the timer's count
+/// equals the traced call length minus the traced empty call.
+pub fn trace_check(scenes: &Path, dir: &Path, timeout: Duration) -> Result<TraceCheck> {
+    const TRACE_BIN: &str = "trace-check";
+    cmd::run(
+        cmd::cargo()
+            .args(["build", "--release", "--bin", TRACE_BIN])
+            // Same value as the bench builds, so build.rs does not run again.
+            .env("CUESIGHT_BENCH_SCENES", scenes)
+            .current_dir(bench_firmware_dir()),
+    )?;
+    let elf = target_dir()
+        .join(tools::TARGET)
+        .join("release")
+        .join(TRACE_BIN);
+    let listing = dir.join("qemu-trace-check.txt");
+    let trace = dir.join("trace-check.log");
+    let trace_arg = trace.display().to_string();
+    run_qemu_with(
+        &[
+            "-accel",
+            "tcg,one-insn-per-tb=on",
+            "-d",
+            "exec,nochain",
+            "-D",
+            &trace_arg,
+        ],
+        &elf,
+        &listing,
+        timeout,
+    )?;
+    let text = std::fs::read_to_string(&listing)
+        .map_err(|e| Failure::new(format!("reading {}: {e}", listing.display())))?;
+    let numbers: Vec<f64> = text
+        .lines()
+        .find_map(|l| l.strip_prefix("trace-check "))
+        .map(|l| l.split(' ').filter_map(|n| n.parse().ok()).collect())
+        .unwrap_or_default();
+    let [reps, ticks, empty_ticks] = numbers[..] else {
+        return Err(Failure::new(format!(
+            "{}: no trace-check line",
+            listing.display()
+        )));
+    };
+    let timer = (ticks - empty_ticks) * INSTRUCTIONS_PER_TICK / reps;
+    let lengths = call_lengths(&trace)?;
+    let _ = std::fs::remove_file(&trace); // tens of megabytes
+    let mode = |calls: &BTreeMap<u64, usize>| {
+        calls
+            .iter()
+            .max_by_key(|(_, n)| **n)
+            .map(|(length, _)| *length)
+    };
+    let (Some(call), Some(empty)) = (mode(&lengths.0), mode(&lengths.1)) else {
+        return Err(Failure::new("the instruction trace shows no measured call"));
+    };
+    let check = TraceCheck { timer, call, empty };
+    println!(
+        "xtask bench: trace check: timer {timer:.2} instructions, trace {call} - {empty} = {}",
+        call - empty
+    );
+    if (timer - (call - empty) as f64).abs() > CALIBRATION_TOLERANCE {
+        return Err(Failure::new(format!(
+            "trace check failed: the timer counts {timer:.2} instructions per prediction, \
+             the instruction trace {call} - {empty} = {}",
+            call - empty
+        )));
+    }
+    Ok(check)
+}
+
+/// Lengths of the calls that `count::ticks` makes, from a `-d exec` trace of one
+/// instruction per block: (measured function, empty function), length -> calls.
+fn call_lengths(trace: &Path) -> Result<(BTreeMap<u64, usize>, BTreeMap<u64, usize>)> {
+    use std::io::BufRead as _;
+    let file =
+        File::open(trace).map_err(|e| Failure::new(format!("opening {}: {e}", trace.display())))?;
+    let (mut calls, mut empties) = (BTreeMap::new(), BTreeMap::new());
+    // Inside a call of the measured (true) or the empty (false) function, and its length.
+    let mut inside: Option<(bool, u64)> = None;
+    for line in std::io::BufReader::new(file).lines() {
+        let line = line.map_err(|e| Failure::new(format!("{}: {e}", trace.display())))?;
+        let Some((_, symbol)) = line.rsplit_once("] ") else {
+            continue;
+        };
+        // Legacy and v0 manglings both contain the path segments `5count5ticks`.
+        if symbol.contains("5count5ticks") {
+            if let Some((measured, length)) = inside.take() {
+                *(if measured { &mut calls } else { &mut empties })
+                    .entry(length)
+                    .or_insert(0) += 1;
+            }
+            continue;
+        }
+        match &mut inside {
+            Some((_, length)) => *length += 1,
+            None if symbol.trim() == "bench_trace_root" => inside = Some((true, 1)),
+            None if symbol.contains("5count5empty") => inside = Some((false, 1)),
+            None => {}
+        }
+    }
+    Ok((calls, empties))
 }
 
 /// Parses the `calibration` and `count` lines of a run, checks the calibration and

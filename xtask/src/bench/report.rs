@@ -8,7 +8,7 @@ use std::process::Command;
 use serde_json::{json, Value};
 
 use super::disasm;
-use super::firmware::{Run, BUILDS, INSTRUCTIONS_PER_TICK, QEMU_ARGS};
+use super::firmware::{Run, TraceCheck, BUILDS, INSTRUCTIONS_PER_TICK, QEMU_ARGS};
 use super::host::Timings;
 use crate::cmd::{probe, Failure, Result};
 
@@ -18,6 +18,7 @@ pub struct Bench<'a> {
     pub scenes: usize,
     pub counted: usize,
     pub runs: &'a [Run],
+    pub trace_check: &'a TraceCheck,
     pub errors: &'a Value,
     pub timings: Option<&'a Timings>,
 }
@@ -179,6 +180,13 @@ pub fn json(bench: &Bench) -> Result<Value> {
             "qemu_args": QEMU_ARGS.join(" "),
             "instructions_per_tick": INSTRUCTIONS_PER_TICK,
             "rustc": probe(Command::new("rustc").arg("--version")).map(|v| v.trim().to_string()),
+            // The tree measured: a `-dirty` suffix means uncommitted changes were included.
+            "source": probe(
+                Command::new("git")
+                    .args(["describe", "--always", "--dirty"])
+                    .current_dir(crate::cmd::root())
+            )
+            .map(|v| v.trim().to_string()),
             "profiles": {
                 "release": "opt-level 3, fat LTO, codegen-units 1",
                 "release-s": "opt-level \"s\", fat LTO, codegen-units 1 (what firmware/ ships)",
@@ -186,6 +194,11 @@ pub fn json(bench: &Bench) -> Result<Value> {
             "images": BUILDS.iter().map(|b| format!("{} {}", b.backend, b.profile)).collect::<Vec<_>>(),
         },
         "calibration": calibration,
+        "trace_check": {
+            "timer": bench.trace_check.timer,
+            "traced_call": bench.trace_check.call,
+            "traced_empty_call": bench.trace_check.empty,
+        },
         "host": host,
         "disassembly_check": disassembly,
         "rows": rows,
@@ -378,15 +391,22 @@ fn method(report: &Value) -> String {
          up, then `reps` times through a function pointer (`reps` so that a run is ≈ 500,000 \
          instructions, ≥ 8), and the same loop calling an empty function of the same signature \
          is subtracted: the figure is the instructions of the call beyond an empty call. \
-         Calibration blocks of known length (measured / expected): {}.\n",
+         Calibration blocks of known length (measured / expected): {}. Cross-check on real \
+         code (`bench-firmware/src/bin/trace_check.rs`, one `KimGrip` f32 prediction, QEMU \
+         logging every executed instruction): the timer gives {} instructions, the trace {} for \
+         the call and {} for the empty call.\n",
         m["qemu_args"].as_str().unwrap_or("?"),
         m["qemu"].as_str().unwrap_or("?"),
         m["instructions_per_tick"],
         calibration_summary(report),
+        opt(&report["trace_check"]["timer"], |x| format!("{x:.2}")),
+        report["trace_check"]["traced_call"],
+        report["trace_check"]["traced_empty_call"],
     ));
     md.push_str(&format!(
-        "- **Builds.** {} for `thumbv7em-none-eabihf`; `release` is {} and `release-s` {}. \
-         `micromath` has no f64 rows: `cuesight::collide_f64` needs `libm`.\n",
+        "- **Builds.** Source `{}`; {} for `thumbv7em-none-eabihf`; `release` is {} and \
+         `release-s` {}. `micromath` has no f64 rows: `cuesight::collide_f64` needs `libm`.\n",
+        m["source"].as_str().unwrap_or("?"),
         m["rustc"].as_str().unwrap_or("rustc"),
         m["profiles"]["release"].as_str().unwrap_or("?"),
         m["profiles"]["release-s"].as_str().unwrap_or("?"),
