@@ -47,6 +47,14 @@ fn main() -> ! {
                 session.requests(),
                 session.errors()
             );
+            let (peak, size) = board::peak_stack();
+            defmt::info!(
+                "peak stack {=u32} of {=u32} bytes (session {=usize}, line buffer {=usize})",
+                peak,
+                size,
+                core::mem::size_of::<Session>(),
+                MAX_LINE
+            );
             board::exit(true)
         }
         Err(error) => {

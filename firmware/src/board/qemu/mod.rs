@@ -20,6 +20,7 @@
 //! * **Log:** defmt frames over semihosting to QEMU's stderr ([`log`]), so the binary
 //!   log never mixes with the protocol on stdout.
 //! * **Exit:** semihosting `SYS_EXIT`, which QEMU turns into its own exit code.
+//! * **Stack:** painted at boot, so [`peak_stack`] can tell how deep it went.
 
 use core::convert::Infallible;
 use core::sync::atomic::{AtomicBool, Ordering};
@@ -29,6 +30,9 @@ use cortex_m::peripheral::NVIC;
 use cortex_m_semihosting::debug;
 
 mod log;
+mod stack;
+
+pub use stack::peak as peak_stack;
 
 /// The board, as reported by `version`.
 pub const NAME: &str = "qemu-mps2-an386";
@@ -101,6 +105,7 @@ pub fn init() -> Board {
     }
     // Interrupts only wake `wfi`; no handler ever runs.
     cortex_m::interrupt::disable();
+    stack::paint();
     write(BAUDDIV, PCLK_HZ / BAUD);
     write(CTRL, CTRL_TX_EN | CTRL_RX_EN | CTRL_RX_INT_EN);
     write(INTSTATUS, INT_RX);
