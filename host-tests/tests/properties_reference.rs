@@ -231,7 +231,9 @@ fn kim_grip_and_exact_track_the_reference_with_speed_dependent_and_cloth_frictio
             if r & 1 == 0 {
                 s.params().with_friction_law(FrictionLaw::MARLOW)
             } else {
-                s.params().with_cue_table_friction((0.2 * unit(r)) as f32).unwrap()
+                s.params()
+                    .with_cue_table_friction((0.2 * unit(r)) as f32)
+                    .unwrap()
             }
         },
     );
