@@ -18,7 +18,11 @@
 //! | `KimGrip` | second-order direction error, table-friction direction and timing | `0.06 (2.5 J f (k_y−k_z)/k_y + X) / U` |
 //! | `Exact` | step error (24 steps) | `0.002 (2.5 J + X) / U + 2e-6` |
 //!
-//! (`2.5 = 1/ν` turns a friction impulse into `R Δω`; `1.4 = 1 + μ_s` at most.)
+//! (`2.5 = 1/ν` turns a friction impulse into `R Δω`; `1.4` stands for `1 + μ_s + μ_ct`.)
+//!
+//! Outside the calibrated domain (μ(0) > 0.12, μ_s > 0.4, e* < 0.9 or any cue-ball/table
+//! friction μ_ct, which `Kim` and `Ideal` ignore) neither `Kim` nor `KimGrip` is picked;
+//! `Ideal`'s estimate is the size of the effects it leaves out and holds anywhere.
 
 use crate::impact::Impact;
 use crate::kim_grip::initial_slip;
@@ -31,7 +35,8 @@ const EXACT_FACTOR: f32 = 0.002;
 const EXACT_FLOOR: f32 = 2e-6;
 
 /// Estimated error `max(|Δv|, R|Δω|) / U` of `model` for this scene. `Auto` returns the
-/// estimate of the tier it would pick for a tolerance of 1e-3.
+/// estimate of the tier it would pick for `tolerance`. Outside the calibrated domain
+/// (module docs) `Kim` and `KimGrip` report an infinite estimate.
 pub fn error_estimate(params: &Params, impact: &Impact, model: Model) -> f32 {
     let f = Features::of(params, impact);
     match model {
@@ -60,6 +65,11 @@ pub fn select(params: &Params, impact: &Impact, tolerance: f32) -> (Model, f32) 
 }
 
 struct Features {
+    /// Inside the domain the factors were calibrated on (the foundation grid's):
+    /// μ(0) ≤ 0.12, μ_s ≤ 0.4, e* ≥ 0.9, μ_ct ≤ 1e-3 (negligible cue-ball/table friction).
+    calibrated: bool,
+    /// `1 + μ_s + μ_ct`: how much table friction can add to a friction impulse.
+    table_factor: f32,
     speed: f32,
     restitution_loss: f32,
     impulse: f32,
@@ -105,7 +115,13 @@ impl Features {
         } else {
             0.0
         };
+        let calibrated = law.at(0.0) <= 0.12
+            && params.mu_s() <= 0.4
+            && e >= 0.9
+            && params.cue_table_friction() <= 1e-3;
         Self {
+            calibrated,
+            table_factor: 1.0 + params.mu_s() + params.cue_table_friction(),
             speed,
             restitution_loss: 0.5 * (1.0 - e) * u.x,
             impulse,
@@ -122,18 +138,29 @@ impl Features {
     }
 
     fn ideal(&self) -> f32 {
-        let velocity = self.restitution_loss + 1.4 * self.impulse;
-        let spin = 2.5 * 1.4 * self.impulse;
+        let velocity = self.restitution_loss + self.table_factor * self.impulse;
+        let spin = 2.5 * self.table_factor * self.impulse;
         crate::math::max(velocity, spin) / self.speed
     }
 
     fn kim(&self) -> f32 {
+        if !self.calibrated {
+            // Outside the calibrated domain Kim's leading-term estimate is not trusted
+            // (and it ignores μ_ct): never pick it there.
+            return f32::INFINITY;
+        }
         let turn = self.kim_budget * self.fraction * self.anisotropy;
         let grip = crate::math::max(self.kim_budget - self.stick_budget, 0.0);
         2.5 * (turn + grip) / self.speed
     }
 
     fn kim_grip(&self) -> f32 {
+        if !self.calibrated {
+            // Outside the calibrated domain KimGrip's approximations (first order in
+            // μ μ_s, table friction along a mean direction) are not bounded by this
+            // estimate: leave those scenes to Exact.
+            return f32::INFINITY;
+        }
         KIM_GRIP_FACTOR * (2.5 * self.impulse * self.fraction * self.anisotropy + self.table)
             / self.speed
     }

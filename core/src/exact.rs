@@ -40,6 +40,9 @@ use crate::real::Real;
 /// Steps across the frictionless normal impulse `(1 + e*) U_x / 2`.
 pub const STEPS: usize = 24;
 
+/// Newton/bisection refinements of the impact's end inside the last step.
+const FINAL_STEP_REFINEMENTS: usize = 3;
+
 #[derive(Clone, Copy)]
 struct State<R> {
     slip_y: R,
@@ -134,35 +137,64 @@ impl<R: Real> Model<R> {
         n
     }
 
-    /// Friction impulse `(j_y, j_z)` that zeroes the slip within a step (linearised
-    /// table response with the current table-slip direction).
-    fn stick_impulse(&self, s: &State<R>) -> (R, R) {
+    /// Linearised slip compliance for a friction impulse that stops the slip from state
+    /// `s`: `Δv_z = k_z j_z` and `Δv_y = 7 j_y + k_yz j_z`, with the pressed ball's table
+    /// friction along its current table-contact slip direction.
+    fn stick_compliance(&self, s: &State<R>) -> (R, R) {
         let two_over_nu = R::of(2.0) * self.inv_nu;
-        // Downward impulse on the object ball (v_z > 0 needs j_z < 0): it is pressed and
-        // the cue ball rises; the table friction feeds back through Ω_y and V_y.
-        let (c_x, c_y) = (s.table_slip_x, s.table_slip_y);
-        let length = R::sqrt(c_x * c_x + c_y * c_y);
-        let (dir_x, dir_y) = if length > R::ZERO {
-            (c_x / length, c_y / length)
-        } else {
-            (R::ONE, R::ZERO)
+        let unit = |x: R, y: R| {
+            let length = R::sqrt(x * x + y * y);
+            if length > R::ZERO {
+                (x / length, y / length)
+            } else {
+                (R::ONE, R::ZERO)
+            }
         };
-        let object_pressed = s.slip_z > R::ZERO && s.object_vz == R::ZERO;
-        let cue_pressed = s.slip_z < R::ZERO && s.cue_vz == R::ZERO;
-        let j_z = if object_pressed {
-            // Δv_z = j_z (cue rises) + 2 j_z/ν + μ_s j_z c_x/ν (table torque).
-            -s.slip_z / (R::ONE + two_over_nu - self.mu_s * dir_x * self.inv_nu)
-        } else if cue_pressed {
-            -s.slip_z / (R::ONE + two_over_nu)
+        if s.slip_z > R::ZERO && s.object_vz == R::ZERO {
+            // Downward impulse on the object ball: it is pressed, the cue ball rises;
+            // Δv_z = j_z + 2 j_z/ν + μ_s j_z c_x/ν (table torque), Δv_y gets μ_s j_z c_y.
+            let (dir_x, dir_y) = unit(s.table_slip_x, s.table_slip_y);
+            (
+                R::ONE + two_over_nu - self.mu_s * dir_x * self.inv_nu,
+                self.mu_s * dir_y,
+            )
+        } else if s.slip_z < R::ZERO && s.cue_vz == R::ZERO {
+            // Upward impulse on the object ball: the cue ball is pressed, with μ_ct.
+            let (dir_x, dir_y) = unit(s.cue_slip_x, s.cue_slip_y);
+            let mu_ct = if self.mu_ct > R::ZERO {
+                self.mu_ct
+            } else {
+                R::ZERO
+            };
+            (
+                R::ONE + two_over_nu + mu_ct * dir_x * self.inv_nu,
+                mu_ct * dir_y,
+            )
         } else {
-            -s.slip_z / (R::of(2.0) + two_over_nu)
-        };
-        let table_y = if object_pressed {
-            self.mu_s * j_z * dir_y
-        } else {
-            R::ZERO
-        };
-        (-(s.slip_y + table_y) / R::of(7.0), j_z)
+            (R::of(2.0) + two_over_nu, R::ZERO)
+        }
+    }
+
+    /// Friction impulse `(j_y, j_z)` that zeroes the slip `(slip_y, slip_z)` at the
+    /// compliance `(k_z, k_yz)`.
+    fn solve_slip(compliance: (R, R), slip_y: R, slip_z: R) -> (R, R) {
+        let j_z = -slip_z / compliance.0;
+        (-(slip_y + compliance.1 * j_z) / R::of(7.0), j_z)
+    }
+
+    /// Friction impulse that zeroes the slip by the end of a step of `dp`: the
+    /// linearised solution, corrected twice on the actual step map (the table friction
+    /// direction moves within the step).
+    fn stick_impulse(&self, s: &State<R>, dp: R, refine: bool) -> (R, R) {
+        let compliance = self.stick_compliance(s);
+        let (mut j_y, mut j_z) = Self::solve_slip(compliance, s.slip_y, s.slip_z);
+        for _ in 0..if refine { 2 } else { 0 } {
+            let n = self.step(s, dp, j_y, j_z);
+            let (d_y, d_z) = Self::solve_slip(compliance, n.slip_y, n.slip_z);
+            j_y = j_y + d_y;
+            j_z = j_z + d_z;
+        }
+        (j_y, j_z)
     }
 
     /// Advance one step of normal impulse `dp`; `stuck` tells whether the contact grips.
@@ -171,34 +203,71 @@ impl<R: Real> Model<R> {
             return (self.step(s, dp, R::ZERO, R::ZERO), true);
         }
         let slip = R::sqrt(s.slip_y * s.slip_y + s.slip_z * s.slip_z);
-        let cone = self.law.at_in(R::ZERO) * dp;
         if slip == R::ZERO {
             return (self.step(s, dp, R::ZERO, R::ZERO), true);
         }
-        // Would this step stop the slip? (largest compliance 7 per unit impulse)
-        if R::of(7.0) * cone >= slip {
-            let (j_y, j_z) = self.stick_impulse(s);
-            if R::sqrt(j_y * j_y + j_z * j_z) <= cone {
-                return (self.step(s, dp, j_y, j_z), true);
+        // The impulse that stops the slip, and the normal impulse sliding friction needs
+        // to deliver it along the slip's decrease (effective compliance k̄ = |v| / s*,
+        // the `friction` module's integral of 1/μ).
+        let (mut stick_y, mut stick_z) = self.stick_impulse(s, dp, false);
+        let mut stick = R::sqrt(stick_y * stick_y + stick_z * stick_z);
+        if stick == R::ZERO {
+            return (self.step(s, dp, stick_y, stick_z), true);
+        }
+        // Near the stick onset (the blend below starts at half the stick impulse), use
+        // the stick impulse corrected on the step map, for continuity.
+        if self.law.at_in(R::ZERO) * dp > R::of(0.4) * stick {
+            (stick_y, stick_z) = self.stick_impulse(s, dp, true);
+            stick = R::sqrt(stick_y * stick_y + stick_z * stick_z);
+            if stick == R::ZERO {
+                return (self.step(s, dp, stick_y, stick_z), true);
             }
         }
+        let compliance = slip / stick;
+        if self.law.normal_impulse_between(slip, R::ZERO, compliance) <= dp {
+            return (self.step(s, dp, stick_y, stick_z), true);
+        }
+        // Friction budget ∫ μ dp over this step.
+        let budget = match self.law {
+            FrictionLaw::Constant(mu) => R::of(mu) * dp,
+            FrictionLaw::SpeedDependent { .. } => {
+                self.law.slip_change(slip, dp, compliance) / compliance
+            }
+        };
+        // Direction at the step midpoint (second order) ...
         let half = R::of(0.5);
-        let first = self.law.at_in(slip) * half * dp / slip;
+        let first = half * budget / slip;
         let mid = self.step(s, half * dp, -s.slip_y * first, -s.slip_z * first);
         let mid_slip = R::sqrt(mid.slip_y * mid.slip_y + mid.slip_z * mid.slip_z);
-        let (dir_y, dir_z, speed) =
+        let (mid_y, mid_z) =
             if mid_slip > R::ZERO && mid.slip_y * s.slip_y + mid.slip_z * s.slip_z > R::ZERO {
-                (-mid.slip_y / mid_slip, -mid.slip_z / mid_slip, mid_slip)
+                (-mid.slip_y / mid_slip, -mid.slip_z / mid_slip)
             } else {
-                (-s.slip_y / slip, -s.slip_z / slip, slip)
+                (-s.slip_y / slip, -s.slip_z / slip)
             };
-        let size = self.law.at_in(speed) * dp;
-        let next = self.step(s, dp, dir_y * size, dir_z * size);
+        // ... turned towards the stick impulse's as the budget nears s*, reaching it at
+        // s* so that the step is continuous with the sticking one (as in `KimGrip`).
+        let fraction = budget / stick;
+        let weight = if fraction > half {
+            let w = R::of(2.0) * fraction - R::ONE;
+            R::min(w * w, R::ONE)
+        } else {
+            R::ZERO
+        };
+        let (blend_y, blend_z) = (
+            (R::ONE - weight) * mid_y + weight * stick_y / stick,
+            (R::ONE - weight) * mid_z + weight * stick_z / stick,
+        );
+        let norm = R::sqrt(blend_y * blend_y + blend_z * blend_z);
+        let (dir_y, dir_z) = if norm > R::ZERO {
+            (blend_y / norm, blend_z / norm)
+        } else {
+            (mid_y, mid_z)
+        };
+        let next = self.step(s, dp, dir_y * budget, dir_z * budget);
         if next.slip_y * s.slip_y + next.slip_z * s.slip_z <= R::ZERO {
-            // Overshoot without a feasible stick impulse: stop the slip anyway (the
-            // budget was within a midpoint error of stopping it).
-            let (j_y, j_z) = self.stick_impulse(s);
-            return (self.step(s, dp, j_y, j_z), true);
+            // Overshoot: the budget was within a rounding of stopping the slip.
+            return (self.step(s, dp, stick_y, stick_z), true);
         }
         (next, false)
     }
@@ -266,7 +335,48 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
                 } else {
                     R::ONE
                 };
-                let (last, last_stuck) = model.advance(&state, fraction * dp, stuck);
+                // The normal velocity is linear in λ only while the contact's regime and
+                // the tables' friction stay the same inside the step; refine λ on the
+                // actual partial steps (secant, bracketed in [from, 1]) so that the end
+                // of the impact does not jump when a regime change moves inside it.
+                let work_at = |lambda: R| -> (R, (State<R>, bool)) {
+                    let partial = model.advance(&state, lambda * dp, stuck);
+                    let w = work + R::of(0.5) * (v0 + partial.0.normal_velocity) * lambda * dp;
+                    (w - target, partial)
+                };
+                let (mut lo, mut hi) = (from, R::ONE);
+                let (mut lambda, mut result) = (fraction, work_at(fraction));
+                for _ in 0..FINAL_STEP_REFINEMENTS {
+                    let residual = result.0;
+                    if residual == zero {
+                        break;
+                    }
+                    if residual > zero {
+                        hi = lambda;
+                    } else {
+                        lo = lambda;
+                    }
+                    // Local slope dW/dλ ≈ v(λ) dp, the normal velocity at the end.
+                    let rate = result.1 .0.normal_velocity * dp;
+                    let mut next_lambda = if rate > zero {
+                        lambda - residual / rate
+                    } else {
+                        hi
+                    };
+                    if !(next_lambda >= lo && next_lambda <= hi) {
+                        next_lambda = R::of(0.5) * (lo + hi);
+                    }
+                    if next_lambda == lambda {
+                        break;
+                    }
+                    let candidate = work_at(next_lambda);
+                    if R::abs(candidate.0) > R::abs(residual) {
+                        break; // no better: keep what we have
+                    }
+                    lambda = next_lambda;
+                    result = candidate;
+                }
+                let (last, last_stuck) = result.1;
                 state = last;
                 ever_stuck = ever_stuck || last_stuck;
                 break;

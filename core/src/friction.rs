@@ -46,10 +46,11 @@ impl FrictionLaw {
         Ok(Self::Constant(check(Field::Friction, mu, 0.0, 1.0, false)?))
     }
 
-    /// `μ(v) = a + b·exp(−c·v)` with `a ∈ (0, 1]`, `b ∈ [0, 1]`, `a + b ≤ 1`,
-    /// `c ∈ [0, 100]` s/m.
+    /// `μ(v) = a + b·exp(−c·v)` with `a ∈ [1e-6, 1]`, `b ∈ [0, 1]`, `a + b ≤ 1`,
+    /// `c ∈ [0, 100]` s/m. (`a` bounds the slip integral `∫ dv/μ`; below 1e-6 it would
+    /// overflow f32, and no measured law comes near.)
     pub fn speed_dependent(a: f32, b: f32, c: f32) -> Result<Self> {
-        let a = check(Field::Friction, a, 0.0, 1.0, true)?;
+        let a = check(Field::Friction, a, 1e-6, 1.0, false)?;
         let b = check(Field::FrictionAmplitude, b, 0.0, 1.0, false)?;
         let c = check(Field::FrictionDecay, c, 0.0, 100.0, false)?;
         if a + b > 1.0 {
@@ -84,44 +85,64 @@ impl FrictionLaw {
     /// Specific normal impulse (m/s) over which the slip speed falls from `from` to
     /// `to` (`0 ≤ to ≤ from`) at effective compliance `compliance`.
     pub(crate) fn normal_impulse_between<R: Real>(&self, from: R, to: R, compliance: R) -> R {
+        self.normal_impulse_for_change(from, R::max(from - to, R::ZERO), compliance)
+    }
+
+    /// Specific normal impulse (m/s) over which the slip speed falls by `change` from
+    /// `from` (`0 ≤ change ≤ from`). Taking the change itself, not the end speed, keeps a
+    /// change far below the slip's own resolution.
+    pub(crate) fn normal_impulse_for_change<R: Real>(
+        &self,
+        from: R,
+        change: R,
+        compliance: R,
+    ) -> R {
         match *self {
-            Self::Constant(mu) => (from - to) / (R::of(mu) * compliance),
+            Self::Constant(mu) => change / (R::of(mu) * compliance),
             Self::SpeedDependent { a, b, c } => {
                 let (a, b, c) = (R::of(a), R::of(b), R::of(c));
                 if c == R::ZERO {
-                    return (from - to) / ((a + b) * compliance);
+                    return change / ((a + b) * compliance);
                 }
                 // ln((a + b e^{−c v₀}) / (a + b e^{−c v})) written as ln(1 + q) with
                 // q = b e^{−c v} (e^{−c δ} − 1) / (a + b e^{−c v}), δ = v₀ − v ≥ 0, so that
                 // a tiny slip change keeps its digits (the two terms below nearly cancel
                 // to δ a / (a + b e^{−c v}) when c δ is small).
-                let delta = R::max(from - to, R::ZERO);
-                let decay = b * R::exp(-c * to);
-                let q = decay * R::exp_m1(-c * delta) / (a + decay);
-                R::max(delta + R::ln_1p(q) / c, R::ZERO) / (a * compliance)
+                let decay = b * R::exp(-c * (from - change));
+                let q = decay * R::exp_m1(-c * change) / (a + decay);
+                R::max(change + R::ln_1p(q) / c, R::ZERO) / (a * compliance)
+            }
+        }
+    }
+
+    /// How much the slip speed falls (m/s) over a specific normal impulse `normal` of
+    /// sliding from `from` (all of it if the slip stops before).
+    pub(crate) fn slip_change<R: Real>(&self, from: R, normal: R, compliance: R) -> R {
+        match *self {
+            Self::Constant(mu) => R::min(R::of(mu) * compliance * normal, from),
+            Self::SpeedDependent { .. } => {
+                if normal >= self.normal_impulse_for_change(from, from, compliance) {
+                    return from;
+                }
+                // Newton on D(δ) = (G(v₀) − G(v₀ − δ))/k̄ − p, D' = 1/(k̄ μ(v₀ − δ)),
+                // bracketed in [0, v₀].
+                let mut change = R::min(self.at_in(from) * compliance * normal, from);
+                for _ in 0..NEWTON_ITERATIONS {
+                    let residual =
+                        self.normal_impulse_for_change(from, change, compliance) - normal;
+                    change = change - residual * compliance * self.at_in(from - change);
+                    change = R::min(R::max(change, R::ZERO), from);
+                }
+                change
             }
         }
     }
 
     /// Slip speed (m/s) after a specific normal impulse `normal` of sliding from `from`
     /// (zero if the slip would stop before).
+    #[cfg(test)]
     pub(crate) fn slip_after<R: Real>(&self, from: R, normal: R, compliance: R) -> R {
-        match *self {
-            Self::Constant(mu) => R::max(from - R::of(mu) * compliance * normal, R::ZERO),
-            Self::SpeedDependent { .. } => {
-                if normal >= self.normal_impulse_between(from, R::ZERO, compliance) {
-                    return R::ZERO;
-                }
-                // Newton on D(v) = (G(v₀) − G(v))/k̄ − p, D' = −1/(k̄ μ(v)), bracketed.
-                let mut slip = R::max(from - self.at_in(from) * compliance * normal, R::ZERO);
-                for _ in 0..NEWTON_ITERATIONS {
-                    let residual = self.normal_impulse_between(from, slip, compliance) - normal;
-                    slip = slip + residual * compliance * self.at_in(slip);
-                    slip = R::min(R::max(slip, R::ZERO), from);
-                }
-                slip
-            }
-        }
+        from - self.slip_change(from, normal, compliance)
     }
 }
 

@@ -58,7 +58,7 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
     let frictionless_normal = half * (R::ONE + restitution) * approach;
     let (slip_y, slip_z) = initial_slip::<R>(params, impact);
     let scale = R::max(R::abs(slip_y), R::abs(slip_z));
-    if law.is_frictionless() || scale == R::ZERO {
+    if law.is_frictionless() || scale == R::ZERO || frictionless_normal == R::ZERO {
         // No friction, or no slip and so no friction direction (exact gearing).
         return Outcome::without_friction(
             params,
@@ -112,7 +112,7 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
             match law {
                 FrictionLaw::Constant(mu) => R::of(mu) * normal,
                 FrictionLaw::SpeedDependent { .. } => {
-                    (slip_speed - law.slip_after(slip_speed, normal, compliance)) / compliance
+                    law.slip_change(slip_speed, normal, compliance) / compliance
                 }
             }
         }
@@ -125,7 +125,10 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
     let first_span = R::min(frictionless_normal, grip_normal);
     // Table friction along x per unit normal impulse while sliding: the object ball's
     // (topspin) holds it back, the cue ball's (draw) slows the approach.
-    let table_rate = if object_pressed {
+    let table_rate = if first_span <= R::ZERO {
+        // The slip stops at once (or no impact at all): nothing to spread a rate over.
+        R::ZERO
+    } else if object_pressed {
         R::of(params.mu_s()) * R::abs(first_dir_z) * first_budget / first_span
     } else {
         -mu_ct * cue_dir_x * R::abs(first_dir_z) * first_budget / first_span

@@ -265,12 +265,9 @@ fn exact_and_auto_hold_on_the_valid_domain() {
 /// `KimGrip`'s grip impulse `p*` is computed there as the difference of two nearly
 /// equal terms and loses its digits in f32 (see `common::in_tiny_slip_bug_region`).
 #[test]
-#[ignore = "bug: KimGrip, speed-dependent friction at a tiny slip (c|v0|a/(a+b) < 1e-3): \
-            the grip impulse loses all digits to cancellation in \
-            FrictionLaw::normal_impulse_between; negative normal impulse, energy created"]
-fn bug_kim_grip_speed_dependent_friction_at_tiny_slip_change() {
+fn kim_grip_speed_dependent_friction_at_tiny_slip_change() {
     let figures = run(
-        "bug_kim_grip_speed_dependent_friction_at_tiny_slip_change",
+        "kim_grip_speed_dependent_friction_at_tiny_slip_change",
         100_000,
         0x6375_6573_6967_6803,
         tiny_slip_case(),
@@ -289,9 +286,7 @@ fn bug_kim_grip_speed_dependent_friction_at_tiny_slip_change() {
 /// 1.6e-7 m/s). `KimGrip` returns a negative normal impulse; the cue ball leaves at
 /// 1.57 m/s and the object ball at 2.52 m/s: about 9 times the kinetic energy it had.
 #[test]
-#[ignore = "bug: KimGrip with FrictionLaw::MARLOW, head-on 1 m/s, spin (0, 1e-6, 5.6647045e-6) \
-            rad/s: normal impulse -0.097 N·s, object ball 2.52 m/s, energy ×9"]
-fn bug_kim_grip_marlow_minimal_input() {
+fn kim_grip_marlow_minimal_input() {
     let params = Params::POOL.with_friction_law(FrictionLaw::MARLOW);
     let impact = Impact::from_velocity([1.0, 0.0], [0.0, 1e-6, 5.664_704_5e-6]).unwrap();
     let out = collide(&params, &impact, Model::KimGrip).unwrap();

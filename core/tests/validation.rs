@@ -247,6 +247,11 @@ fn collision_rows() -> Vec<(&'static str, Call, Expect)> {
             Or(Field::Friction, 0.0),
         ),
         row(
+            "speed_dependent a below 1e-6",
+            || ok(FrictionLaw::speed_dependent(5e-7, 0.1, 1.0)),
+            Or(Field::Friction, 5e-7),
+        ),
+        row(
             "speed_dependent a < 0",
             || ok(FrictionLaw::speed_dependent(-0.01, 0.1, 1.0)),
             Or(Field::Friction, -0.01),
@@ -764,7 +769,7 @@ fn range_edges_are_accepted() {
             }
         }
     }
-    assert!(FrictionLaw::speed_dependent(tiny, 0.0, 0.0).is_ok());
+    assert!(FrictionLaw::speed_dependent(1e-6, 0.0, 0.0).is_ok());
     assert!(FrictionLaw::speed_dependent(0.5, 0.5, 100.0).is_ok());
     assert!(FrictionLaw::speed_dependent(1.0, 0.0, 100.0).is_ok());
     assert!(Cue::new(0.1, 0.0).is_ok() && Cue::new(2.0, 1.0).is_ok());

@@ -181,18 +181,11 @@ impl Case {
                 spread(raw[13]) / 2.0,
             ),
         };
-        let mut case = Case {
+        Case {
             impact: impact(speed, cut, kind, r),
             params,
             tolerance: 10f32.powf(-6.0 + 6.0 * unit(raw[15]) as f32),
-        };
-        if in_tiny_slip_bug_region(&case) {
-            // Pending the core fix (see `in_tiny_slip_bug_region`): the same scene with
-            // the law's stick-limit constant μ(0) instead.
-            let mu = case.params.friction_law().at(0.0);
-            case.params = case.params.with_mu(mu).unwrap();
         }
-        case
     }
 }
 
@@ -484,7 +477,17 @@ pub fn precision_allowance(case: &Case, model: Model) -> f64 {
             } else {
                 EPS32.sqrt()
             };
-            2.0 * ux * shape
+            // Since Exact shares KimGrip's slip integral for a speed-dependent law (its
+            // stick test and step budget), it shares that conditioning too.
+            let law = match case.params.friction_law() {
+                FrictionLaw::SpeedDependent { a, b, c } if b > 0.0 && c > 0.0 => {
+                    32.0 * EPS32 * (a as f64 + b as f64) / (a as f64 * c as f64)
+                }
+                _ => 0.0,
+            };
+            // 4 (was 2): the impact's end is refined on actual partial steps, each
+            // adding its own rounding to the flat work curve's √ε conditioning.
+            4.0 * ux * shape + law
         }
         _ => 0.0,
     }
