@@ -103,7 +103,12 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
     // Effective compliance along the slip path, k̄ = |v₀| / s* (see `friction`).
     let compliance = slip_speed / slip.stick_budget;
     // p*: the normal impulse at which the slip would stop (may be +inf for tiny μ).
-    let grip_normal = law.normal_impulse_between(slip_speed, R::ZERO, compliance);
+    let grip_normal = match law {
+        FrictionLaw::Constant(mu) => slip.stick_budget / R::of(mu),
+        FrictionLaw::SpeedDependent { .. } => {
+            law.normal_impulse_between(slip_speed, R::ZERO, compliance)
+        }
+    };
     // Friction budget S(p) = ∫ μ dp spent by normal impulse p while sliding.
     let budget_after = |normal: R| -> R {
         if normal >= grip_normal {
