@@ -16,10 +16,20 @@ mod exit;
 mod serve;
 mod shots;
 
-use cuesight_protocol::{Identity, Session, MAX_LINE, PROTOCOL_VERSION};
+use cuesight_protocol::{AnswerLine, Identity, LineReader, Session, MAX_LINE, PROTOCOL_VERSION};
+use static_cell::{ConstStaticCell, StaticCell};
 
 /// Firmware name and version, as `version` reports them.
 const FIRMWARE: &str = concat!(env!("CARGO_PKG_NAME"), " ", env!("CARGO_PKG_VERSION"));
+
+/// The session (48 KB of stroke samples), in `.bss`: built in place by `init_with`, so
+/// it never passes through the stack. (A `ConstStaticCell` would put it in `.data`, and
+/// its 48 KB initial image in flash.)
+static SESSION: StaticCell<Session> = StaticCell::new();
+/// The request line buffer ([`MAX_LINE`] bytes, all zero: `.bss`).
+static LINES: ConstStaticCell<LineReader<MAX_LINE>> = ConstStaticCell::new(LineReader::new());
+/// The answer line buffer (`.bss`).
+static ANSWER: ConstStaticCell<AnswerLine> = ConstStaticCell::new(AnswerLine::new());
 
 #[cortex_m_rt::entry]
 fn main() -> ! {
@@ -31,16 +41,21 @@ fn main() -> ! {
         board::exit(false);
     }
 
-    let mut session = Session::new(Identity {
-        firmware: FIRMWARE,
-        board: board::NAME,
+    // Each cell is taken once, here (`entry` runs once), so none of these panic.
+    let session = SESSION.init_with(|| {
+        Session::new(Identity {
+            firmware: FIRMWARE,
+            board: board::NAME,
+        })
     });
+    let lines = LINES.take();
+    let answer = ANSWER.take();
     defmt::info!(
         "serving protocol {=u32} on the serial port (lines up to {=usize} bytes)",
         PROTOCOL_VERSION,
         MAX_LINE
     );
-    match serve::serve(&mut board.serial, &mut session) {
+    match serve::serve(&mut board.serial, session, lines, answer) {
         Ok(()) => {
             defmt::info!(
                 "shutdown: {=u32} requests answered, {=u32} with an error",
@@ -49,7 +64,7 @@ fn main() -> ! {
             );
             let (peak, size) = board::peak_stack();
             defmt::info!(
-                "peak stack {=u32} of {=u32} bytes (session {=usize}, line buffer {=usize})",
+                "peak stack {=u32} of {=u32} bytes (statics: session {=usize}, line buffer {=usize})",
                 peak,
                 size,
                 core::mem::size_of::<Session>(),

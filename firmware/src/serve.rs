@@ -8,9 +8,15 @@ use embedded_io::{Read, Write};
 /// Serves requests until a `shutdown` request has been answered (`Ok`) or the serial
 /// port fails (`Err`). Each line gets exactly one answer line, in order; a line longer
 /// than [`MAX_LINE`] gets a `line_too_long` error and the next line is read normally.
-pub fn serve<S: Read + Write>(serial: &mut S, session: &mut Session) -> Result<(), S::Error> {
-    let mut lines = LineReader::<MAX_LINE>::new();
-    let mut answer = AnswerLine::new();
+///
+/// The buffers come from the caller (statics in `main.rs`): the line buffer alone is
+/// [`MAX_LINE`] bytes, too much for the stack budget.
+pub fn serve<S: Read + Write>(
+    serial: &mut S,
+    session: &mut Session,
+    lines: &mut LineReader<MAX_LINE>,
+    answer: &mut AnswerLine,
+) -> Result<(), S::Error> {
     let mut chunk = [0u8; 64];
     loop {
         let received = serial.read(&mut chunk)?;
@@ -18,7 +24,7 @@ pub fn serve<S: Read + Write>(serial: &mut S, session: &mut Session) -> Result<(
             let Some(event) = lines.push(byte) else {
                 continue;
             };
-            let Some(served) = session.serve(event, &mut answer) else {
+            let Some(served) = session.serve(event, answer) else {
                 continue; // blank line
             };
             match (served.request, served.error) {
@@ -26,7 +32,7 @@ pub fn serve<S: Read + Write>(serial: &mut S, session: &mut Session) -> Result<(
                 (None, Some(kind)) => defmt::debug!("error answer: {}", kind),
                 (None, None) => {}
             }
-            serial.write_all(&answer)?;
+            serial.write_all(answer)?;
             if served.control == Control::Shutdown {
                 serial.flush()?;
                 return Ok(());

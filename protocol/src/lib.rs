@@ -52,17 +52,19 @@ pub use session::{AnswerLine, Control, Identity, Served, Session};
 pub const PROTOCOL_VERSION: u32 = 1;
 
 /// Longest request line, in bytes without the `\n` (a `\r` before it counts). Holds a
-/// `stroke` chunk of [`MAX_SAMPLES`] samples of up to 9 characters each; `collide`
-/// needs about 200.
-pub const MAX_LINE: usize = 10 * 1024;
+/// `stroke` chunk of [`MAX_SAMPLES`] samples of up to 9 characters each (2,304 bytes)
+/// and its other fields; `collide` needs about 200.
+pub const MAX_LINE: usize = 3 * 1024;
 
 /// Longest answer line, `\n` included. The largest answer (`collide` with every
 /// number at its longest, 14 characters) is 782 bytes; the tests check it stays under
 /// 1,000.
 pub const MAX_ANSWER: usize = 1024;
 
-/// Most accelerometer samples in one `stroke` chunk (one line).
-pub const MAX_SAMPLES: usize = 1024;
+/// Most accelerometer samples in one `stroke` chunk (one line). Kept small because the
+/// decoded chunk travels by value through the decoder: the firmware's peak stack
+/// grows with it (1,024 took it past 30 KB; the stack budget is 8 KB).
+pub const MAX_SAMPLES: usize = 256;
 
 /// Most samples in one stroke, all chunks: 3.6 s at the LSM6DSOX's 6.66 kHz, the window
 /// `cuesight-sensors` is tested with (48 KB of `i16`, held by the [`Session`]).

@@ -434,7 +434,7 @@ fn every_error_kind_is_named() {
             Some("cue_mass"),
             "cue_mass = 5",
         ),
-        (&long, LineTooLong, None, "the limit is 10240"),
+        (&long, LineTooLong, None, "the limit is 3072"),
     ];
     for (line, kind, field, needle) in cases {
         let (k, f, message) = error_of(line);
@@ -725,8 +725,11 @@ fn stroke_errors_name_the_problem_and_drop_the_capture() {
     let line_of = |request: &Request| serde_json::to_string(request).unwrap();
     // No rest: the window starts in the middle of the stroke.
     let tail = &samples[samples.len() - 1000..];
-    let middle = Request::Stroke(Stroke::last(tail.iter().copied().collect(), 6667.0));
-    let (answer, _) = serve(&mut session, line_of(&middle).as_bytes());
+    let mut answer = None;
+    for middle in stroke_chunks(tail, 6667.0) {
+        answer = Some(serve(&mut session, line_of(&middle).as_bytes()).0);
+    }
+    let answer = answer.unwrap();
     let Answer::Error(e) = answer else {
         panic!("{answer:?}")
     };
@@ -756,7 +759,16 @@ fn stroke_errors_name_the_problem_and_drop_the_capture() {
     );
     // A hit 2R/5 above centre rolls the ball; a tip beyond half a radius is refused.
     let short = clean_stroke(1000.0, 2.0);
-    let mut last = Stroke::last(short.iter().copied().collect(), 1000.0);
+    let mut chunks = stroke_chunks(&short, 1000.0);
+    let Some(Request::Stroke(mut last)) = chunks.pop() else {
+        unreachable!()
+    };
+    let send_all_but_last = |session: &mut Session| {
+        for chunk in &chunks {
+            serve(session, line_of(chunk).as_bytes());
+        }
+    };
+    send_all_but_last(&mut session);
     last.tip_offset = Some([0.0, 0.4 * 0.028575]);
     let (answer, _) = serve(
         &mut session,
@@ -768,6 +780,7 @@ fn stroke_errors_name_the_problem_and_drop_the_capture() {
     let roll = s.ball_speed / 0.028575;
     assert!((s.ball_spin[1] - roll).abs() < 1e-3 * roll, "{s:?}");
     last.tip_offset = Some([0.02, 0.0]);
+    send_all_but_last(&mut session);
     let (answer, _) = serve(&mut session, line_of(&Request::Stroke(last)).as_bytes());
     let Answer::Error(e) = answer else {
         panic!("{answer:?}")
