@@ -1,6 +1,6 @@
 //! Installs what the checks need, only when it is missing (idempotent and silent when
 //! everything is present): the Cortex-M target and clippy/rustfmt through rustup,
-//! QEMU through apt, defmt-print through `cargo install`.
+//! QEMU through apt, defmt-print and flip-link through `cargo install`.
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -15,7 +15,7 @@ pub const TARGET: &str = "thumbv7em-none-eabihf";
 pub fn ensure_toolchain() -> Result {
     if probe(Command::new("rustup").arg("--version")).is_none() {
         println!("xtask: rustup not found; assuming the toolchain already has {TARGET}, clippy and rustfmt");
-        return Ok(());
+        return ensure_flip_link();
     }
     let targets =
         probe(Command::new("rustup").args(["target", "list", "--installed"])).unwrap_or_default();
@@ -44,7 +44,54 @@ pub fn ensure_toolchain() -> Result {
                 .args(&missing),
         )?;
     }
+    ensure_flip_link()
+}
+
+/// `flip-link`, the firmware's linker (`firmware/.cargo/config.toml`): it puts the stack
+/// below the static data, so an overflow runs off the start of RAM and faults instead
+/// of overwriting `.bss`/`.data`. Installed with `cargo install --locked` if missing;
+/// when it is only in cargo's bin directory, that directory is put on this process's
+/// `PATH` so the cargo commands below find it.
+pub fn ensure_flip_link() -> Result {
+    // flip-link passes its arguments on to the real linker (`--version` included), so
+    // it is looked for as a file rather than run.
+    let on_path = || {
+        std::env::split_paths(&std::env::var_os("PATH").unwrap_or_default())
+            .any(|dir| dir.join("flip-link").is_file())
+    };
+    if on_path() {
+        return Ok(());
+    }
+    let in_cargo_bin = || {
+        cargo_bin_dir()
+            .map(|dir| dir.join("flip-link"))
+            .filter(|path| path.is_file())
+    };
+    if in_cargo_bin().is_none() {
+        println!("xtask: flip-link not found; installing it with cargo install");
+        cmd::run(cmd::cargo().args(["install", "flip-link", "--locked"]))?;
+    }
+    let Some(found) = in_cargo_bin() else {
+        return Err(Failure::new(
+            "flip-link was installed but is neither on PATH nor in cargo's bin directory",
+        ));
+    };
+    let dir = found.parent().map(PathBuf::from).unwrap_or_default();
+    let mut paths = vec![dir];
+    paths.extend(std::env::split_paths(
+        &std::env::var_os("PATH").unwrap_or_default(),
+    ));
+    let joined = std::env::join_paths(paths)
+        .map_err(|e| Failure::new(format!("putting flip-link on PATH: {e}")))?;
+    std::env::set_var("PATH", joined);
     Ok(())
+}
+
+fn cargo_bin_dir() -> Option<PathBuf> {
+    std::env::var_os("CARGO_HOME")
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cargo")))
+        .map(|h| h.join("bin"))
 }
 
 /// Everything `cargo xtask run` needs: the target, QEMU and defmt-print.
