@@ -221,7 +221,13 @@ where
         &setup.cloth,
     );
     let mut pocket: Option<(usize, f32)> = None;
+    let reach = object_after.bounds();
     for (i, p) in scene.table().pockets().iter().enumerate() {
+        // Cheap rejection: a pocket whose target segment lies outside the box around
+        // the whole path cannot be crossed.
+        if !reach.overlaps(p.a, p.b) {
+            continue;
+        }
         if let Some(t) = object_after.crossing(p.a, p.b) {
             if pocket.is_none_or(|(_, best)| t < best) {
                 pocket = Some((i, t));

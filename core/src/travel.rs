@@ -273,6 +273,21 @@ impl Motion {
         self.rolling_velocity * ((speed - self.rolling_deceleration * t) / speed)
     }
 
+    /// An axis-aligned box that contains the whole path: each phase is a straight line
+    /// or a parabola, and a parabola lies inside the triangle of its Bézier control
+    /// points `p`, `p + q T/2`, `p + q T + s T²`.
+    pub fn bounds(&self) -> Bounds {
+        let mut b = Bounds {
+            min: self.start,
+            max: self.start,
+        };
+        let control = self.landing() + self.initial_velocity * (0.5 * self.sliding_time);
+        for point in [self.landing(), control, self.rolling_start(), self.rest()] {
+            b.include(point);
+        }
+        b
+    }
+
     /// First time (s) the centre crosses the segment from `a` to `b` (table plane), if
     /// it does before stopping. Each phase is a polynomial of degree ≤ 2 in time, so the
     /// crossings are roots of `n · (r(t) − a) = 0`, `n ⟂ (b − a)`.
@@ -308,6 +323,38 @@ impl Motion {
             }
         }
         None
+    }
+}
+
+/// An axis-aligned box in the table plane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Bounds {
+    /// Smallest `x`, `y`.
+    pub min: Vec3,
+    /// Largest `x`, `y`.
+    pub max: Vec3,
+}
+
+impl Bounds {
+    fn include(&mut self, p: Vec3) {
+        self.min = Vec3::new(
+            if p.x < self.min.x { p.x } else { self.min.x },
+            if p.y < self.min.y { p.y } else { self.min.y },
+            0.0,
+        );
+        self.max = Vec3::new(
+            if p.x > self.max.x { p.x } else { self.max.x },
+            if p.y > self.max.y { p.y } else { self.max.y },
+            0.0,
+        );
+    }
+
+    /// `true` when the box around the segment from `a` to `b` overlaps this one.
+    pub fn overlaps(&self, a: Vec3, b: Vec3) -> bool {
+        let (low_x, high_x) = if a.x < b.x { (a.x, b.x) } else { (b.x, a.x) };
+        let (low_y, high_y) = if a.y < b.y { (a.y, b.y) } else { (b.y, a.y) };
+        high_x >= self.min.x && low_x <= self.max.x && high_y >= self.min.y && low_y <= self.max.y
     }
 }
 
