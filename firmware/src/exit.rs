@@ -22,6 +22,7 @@ fn fail(report: impl FnOnce()) -> ! {
     exit(false)
 }
 
+#[cfg(not(feature = "panic-never"))]
 #[panic_handler]
 fn panic(info: &core::panic::PanicInfo) -> ! {
     fail(|| defmt::error!("panicked: {}", defmt::Display2Format(info)))
@@ -38,4 +39,21 @@ unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
 #[allow(unsafe_code)] // same signature requirement as HardFault
 unsafe fn DefaultHandler(irqn: i16) {
     fail(|| defmt::error!("unexpected exception or interrupt {=i16}", irqn))
+}
+
+#[cfg(feature = "panic-never")]
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo) -> ! {
+    extern "Rust" {
+        /// Defined nowhere: referencing it makes the link fail while any panic path
+        /// is still reachable (`--features panic-never`).
+        #[link_name = "\n\nerror: the firmware image still has a reachable panic path (see the callers of this symbol above)\n\n"]
+        fn panic_path_reachable() -> !;
+    }
+    #[allow(unsafe_code)]
+    // SAFETY: never runs: the link fails unless every call of this handler has been
+    // optimised away.
+    unsafe {
+        panic_path_reachable()
+    }
 }

@@ -41,15 +41,19 @@ fn main() -> ! {
         board::exit(false);
     }
 
-    // Each cell is taken once, here (`entry` runs once), so none of these panic.
-    let session = SESSION.init_with(|| {
+    // Each cell is taken once, here (`entry` runs once); the `try_` forms keep the
+    // image free of static_cell's panics.
+    let session = SESSION.try_init_with(|| {
         Session::new(Identity {
             firmware: FIRMWARE,
             board: board::NAME,
         })
     });
-    let lines = LINES.take();
-    let answer = ANSWER.take();
+    let (Some(session), Some(lines), Some(answer)) = (session, LINES.try_take(), ANSWER.try_take())
+    else {
+        defmt::error!("the session buffers were already taken");
+        board::exit(false)
+    };
     defmt::info!(
         "serving protocol {=u32} on the serial port (lines up to {=usize} bytes)",
         PROTOCOL_VERSION,

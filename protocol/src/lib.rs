@@ -29,6 +29,7 @@
 #![deny(missing_docs)]
 
 pub mod answer;
+mod decimal;
 mod decode;
 mod display;
 pub mod json;

@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use cuesight_sensors::{ConfigField, StrokeError};
 
 use crate::answer::ErrorAnswer;
+use crate::decimal::Plain;
 use crate::json::Syntax;
 use crate::names::ModelNames;
 use crate::request::Request;
@@ -339,7 +340,7 @@ impl fmt::Display for Problem {
             Problem::TooMany { field, limit } => {
                 write!(f, "{field}: more than {limit}, the buffer's capacity")
             }
-            Problem::Value(error) => fmt::Display::fmt(error, f),
+            Problem::Value(error) => write_value_error(f, error),
             Problem::Stroke(error) => write_stroke_error(f, error),
             Problem::Unsupported { field, reason } => write!(f, "{field}: {reason}"),
         }
@@ -395,12 +396,33 @@ fn write_stroke_error(f: &mut fmt::Formatter<'_>, error: &StrokeError) -> fmt::R
         ),
         StrokeError::NotForward { speed } => write!(
             f,
-            "samples: the cue speed at impact integrates to {speed} m/s, not forward (a negative scale flips the axis)"
+            "samples: the cue speed at impact integrates to {} m/s, not forward (a negative scale flips the axis)",
+            Plain(*speed)
         ),
         StrokeError::LengthMismatch { accel, pitch } => write!(
             f,
             "samples: {accel} accelerometer and {pitch} gyro samples"
         ),
-        StrokeError::Strike(error) => fmt::Display::fmt(error, f),
+        StrokeError::Strike(error) => write_value_error(f, error),
+    }
+}
+
+/// The core error's own `Display` text, with the value written by [`Plain`] rather
+/// than core's float formatting (which has panic paths; see `decimal.rs`).
+fn write_value_error(f: &mut fmt::Formatter<'_>, error: &cuesight::Error) -> fmt::Result {
+    match error {
+        cuesight::Error::NotFinite { field } => {
+            write!(f, "{} must be a finite number", field.name())
+        }
+        cuesight::Error::OutOfRange { field, value } => write!(
+            f,
+            "{} = {} is outside {}",
+            field.name(),
+            Plain(*value),
+            field.valid_range()
+        ),
+        cuesight::Error::NumericalFailure => {
+            f.write_str("internal numerical failure (non-finite result)")
+        }
     }
 }

@@ -72,6 +72,14 @@ const STEPS: &[Step] = &[
         action: || size::report(&qemu::elf_path()),
     },
     Step {
+        title: "firmware: no reachable panic (release profile, --features panic-never: links only if no panic path survives)",
+        action: panic_never,
+    },
+    Step {
+        title: "firmware: nrf52840 board: clippy and release build (not run: no hardware here)",
+        action: nrf52840,
+    },
+    Step {
         title: "firmware: demo session in QEMU",
         action: demo_session,
     },
@@ -84,6 +92,48 @@ const STEPS: &[Step] = &[
         action: crate::bench::check,
     },
 ];
+
+/// The link-time no-panic proof: the shipped configuration (release profile: opt-level
+/// "s", fat LTO, one codegen unit; default board) whose panic handler calls a symbol
+/// defined nowhere, in its own target directory so the release ELF the QEMU steps run
+/// is left alone.
+fn panic_never() -> Result {
+    cargo_in_firmware(&[
+        "build",
+        "--release",
+        "--features",
+        "panic-never",
+        "--target-dir",
+        "target/panic-never",
+    ])
+}
+
+/// The `nrf52840` board, linted and built in release in its own target directory (flash
+/// it with `probe-rs run --chip nRF52840_xxAA <elf>`, see the README).
+fn nrf52840() -> Result {
+    let board = [
+        "--release",
+        "--no-default-features",
+        "--features",
+        "nrf52840",
+        "--target-dir",
+        "target/nrf52840",
+    ];
+    let mut clippy = vec!["clippy"];
+    clippy.extend(board);
+    clippy.extend(["--", "-D", "warnings"]);
+    cargo_in_firmware(&clippy)?;
+    let mut build = vec!["build"];
+    build.extend(board);
+    cargo_in_firmware(&build)?;
+    size::report(
+        &cmd::firmware_dir()
+            .join("target/nrf52840")
+            .join(tools::TARGET)
+            .join("release")
+            .join("cuesight-firmware"),
+    )
+}
 
 fn demo_session() -> Result {
     tools::ensure_qemu()?;

@@ -1,5 +1,5 @@
 //! Board support: everything hardware-specific lives in one module per board, chosen
-//! by a cargo feature (`qemu`, the default). The rest of the firmware sees only this
+//! by a cargo feature (`qemu`, the default, or `nrf52840`). The rest of the firmware sees only this
 //! interface:
 //!
 //! * `NAME: &str` — the board, as the `version` answer reports it;
@@ -11,14 +11,29 @@
 //! * `peak_stack() -> (u32, u32)` — the most stack used so far and the stack's size, in
 //!   bytes (stack painting).
 //!
-//! Adding a board (e.g. `nrf52840`: UARTE0 through its HAL's `embedded_io` impl,
-//! `defmt-rtt` for the log, `exit` as a breakpoint or reset) is a new file here, a
-//! feature in `Cargo.toml` and an arm below; `serve.rs` and `main.rs` do not change.
+//! Adding a board is a new module here, a feature in `Cargo.toml` and an arm below;
+//! `serve.rs` and `main.rs` do not change. The boards:
+//!
+//! * `qemu` ([`qemu`]): QEMU's `mps2-an386`, CMSDK UART0, defmt over semihosting;
+//! * `nrf52840` (`nrf52840/`): UARTE0 through `nrf52840-hal`, `defmt-rtt`, exit as a
+//!   breakpoint for probe-rs (`--no-default-features --features nrf52840`).
+//!
+//! Stack painting (`stack.rs`) is plain Cortex-M, shared by both.
+
+mod stack;
 
 #[cfg(feature = "qemu")]
 mod qemu;
 #[cfg(feature = "qemu")]
 pub use qemu::{exit, init, peak_stack, NAME};
 
-#[cfg(not(any(feature = "qemu")))]
-compile_error!("select a board with a cargo feature: `qemu` (the default)");
+#[cfg(feature = "nrf52840")]
+mod nrf52840;
+#[cfg(feature = "nrf52840")]
+pub use nrf52840::{exit, init, peak_stack, NAME};
+
+#[cfg(not(any(feature = "qemu", feature = "nrf52840")))]
+compile_error!("select a board with a cargo feature: `qemu` (the default) or `nrf52840`");
+
+#[cfg(all(feature = "qemu", feature = "nrf52840"))]
+compile_error!("select one board: `qemu` is the default, so build `nrf52840` with `--no-default-features --features nrf52840`");

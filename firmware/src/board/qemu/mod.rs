@@ -30,8 +30,8 @@ use cortex_m::peripheral::NVIC;
 use cortex_m_semihosting::debug;
 
 mod log;
-mod stack;
 
+use super::stack;
 pub use stack::peak as peak_stack;
 
 /// The board, as reported by `version`.

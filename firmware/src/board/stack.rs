@@ -1,7 +1,8 @@
-//! Peak stack use, by painting: at boot every free stack word below the current stack
-//! pointer is filled with a pattern; the deepest word no longer holding it marks the
-//! deepest the stack has grown. Interrupts never run (see `init`), so nothing else can
-//! touch the region.
+//! Peak stack use, by painting (any Cortex-M board; linked through flip-link, the stack
+//! is `_stack_end.._stack_start` at the bottom of RAM): at boot every free stack word
+//! below the current stack pointer is filled with a pattern; the deepest word no longer holding it marks the
+//! deepest the stack has grown. The boards run no interrupt handlers, so nothing else
+//! touches the region.
 
 /// The paint: unlikely as data, and not a valid address or return address.
 const PAINT: u32 = 0xA5A5_A5A5;
