@@ -315,17 +315,23 @@ impl Body for Stroke {
         "samples, more, rate_hz, scale, tip_offset, cue_mass, tip_restitution";
 
     fn read<'de, A: MapAccess<'de>>(mut map: A, diag: &mut Diag) -> Result<Self, A::Error> {
-        let (mut samples, mut more) = (None, None);
+        // The samples are decoded in place (no `Option<Vec>` moved through the
+        // visitor's result): each copy of a chunk costs the firmware's stack its size.
+        let (mut samples, mut have_samples, mut more) = (Vec::new(), false, None);
         let (mut rate_hz, mut scale, mut tip_offset) = (None, None, None);
         let (mut cue_mass, mut tip_restitution) = (None, None);
         while let Some(key) = map.next_key::<&str>()? {
             match key {
                 "samples" => {
-                    if samples.is_some() {
+                    if have_samples {
                         return Err(diag.fail(Problem::DuplicateField("samples")));
                     }
                     diag.at = Some(("samples", SAMPLES));
-                    samples = Some(map.next_value_seed(SamplesSeed { diag: &mut *diag })?);
+                    map.next_value_seed(SamplesSeed {
+                        diag: &mut *diag,
+                        out: &mut samples,
+                    })?;
+                    have_samples = true;
                     diag.at = None;
                 }
                 "more" => diag.value(&mut map, "more", BOOL, &mut more)?,
@@ -341,9 +347,9 @@ impl Body for Stroke {
                 _ => return Err(unknown(diag, Self::NAME, key)),
             }
         }
-        let Some(samples) = samples else {
+        if !have_samples {
             return Err(diag.fail(Problem::MissingField("samples")));
-        };
+        }
         let more = more.unwrap_or(false);
         if more {
             // The settings belong to the last chunk, which gets the estimate.
@@ -392,13 +398,14 @@ impl Body for () {
     }
 }
 
-/// The `samples` array of one chunk, into a fixed-capacity vector.
+/// The `samples` array of one chunk, into a fixed-capacity vector (`out`, in place).
 struct SamplesSeed<'d> {
     diag: &'d mut Diag,
+    out: &'d mut Vec<i16, MAX_SAMPLES>,
 }
 
 impl<'de> DeserializeSeed<'de> for SamplesSeed<'_> {
-    type Value = Vec<i16, MAX_SAMPLES>;
+    type Value = ();
 
     fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<Self::Value, D::Error> {
         deserializer.deserialize_seq(self)
@@ -406,14 +413,15 @@ impl<'de> DeserializeSeed<'de> for SamplesSeed<'_> {
 }
 
 impl<'de> Visitor<'de> for SamplesSeed<'_> {
-    type Value = Vec<i16, MAX_SAMPLES>;
+    type Value = ();
 
     fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(SAMPLES)
     }
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
-        let mut samples = Vec::new();
+        let samples = self.out;
+        samples.clear();
         while let Some(sample) = seq.next_element::<i16>()? {
             if samples.push(sample).is_err() {
                 return Err(self.diag.fail(Problem::TooMany {
@@ -422,6 +430,6 @@ impl<'de> Visitor<'de> for SamplesSeed<'_> {
                 }));
             }
         }
-        Ok(samples)
+        Ok(())
     }
 }

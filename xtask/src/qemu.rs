@@ -199,7 +199,8 @@ fn session_failure(fw: Firmware, error: FirmwareError, deadline: Instant) -> Fai
     }
 }
 
-fn log_file() -> PathBuf {
+/// Where the last session's decoded firmware log is written.
+pub fn log_file() -> PathBuf {
     cmd::root()
         .join("target")
         .join("xtask")

@@ -80,7 +80,7 @@ const STEPS: &[Step] = &[
         action: nrf52840,
     },
     Step {
-        title: "firmware: demo session in QEMU",
+        title: "firmware: demo session in QEMU, peak stack within 8 KB",
         action: demo_session,
     },
     Step {
@@ -135,13 +135,42 @@ fn nrf52840() -> Result {
     )
 }
 
+/// Issue 6's stack budget: the painted peak the firmware logs at `shutdown`.
+const STACK_BUDGET: u32 = 8 * 1024;
+
 fn demo_session() -> Result {
     tools::ensure_qemu()?;
     qemu::run_session(
         &qemu::elf_path(),
         &qemu::demo_session(),
         Duration::from_secs(qemu::DEFAULT_TIMEOUT_SECS),
-    )
+    )?;
+    check_stack_budget()
+}
+
+/// Fails when the demo session's peak stack (the `peak stack N of M bytes` log line)
+/// exceeds [`STACK_BUDGET`], or when the line is missing.
+fn check_stack_budget() -> Result {
+    let path = qemu::log_file();
+    let log = std::fs::read_to_string(&path)
+        .map_err(|e| Failure::new(format!("reading {}: {e}", path.display())))?;
+    let peak = log.lines().find_map(|line| {
+        let rest = line.split("peak stack ").nth(1)?;
+        rest.split_whitespace().next()?.parse::<u32>().ok()
+    });
+    match peak {
+        Some(peak) if peak <= STACK_BUDGET => {
+            println!("xtask: peak stack {peak} bytes, within the budget of {STACK_BUDGET}");
+            Ok(())
+        }
+        Some(peak) => Err(Failure::new(format!(
+            "peak stack {peak} bytes exceeds the budget of {STACK_BUDGET}"
+        ))),
+        None => Err(Failure::new(format!(
+            "no 'peak stack' line in {}",
+            path.display()
+        ))),
+    }
 }
 
 /// `host-tests/tests/e2e.rs`, `#[ignore]`d in plain `cargo test` because it needs the
