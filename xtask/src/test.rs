@@ -68,8 +68,8 @@ const STEPS: &[Step] = &[
         action: qemu::build_release,
     },
     Step {
-        title: "firmware: release image size",
-        action: || size::report(&qemu::elf_path()),
+        title: "firmware: release image size, flash within 64 KiB",
+        action: || size::check_budgets(&qemu::elf_path()),
     },
     Step {
         title: "firmware: no reachable panic (release profile, --features panic-never: links only if no panic path survives)",
