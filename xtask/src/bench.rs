@@ -20,6 +20,7 @@ mod disasm;
 mod firmware;
 mod host;
 mod plot;
+mod regression;
 mod report;
 
 use std::path::PathBuf;
@@ -144,7 +145,8 @@ pub fn check() -> Result {
         "-D",
         "warnings",
     ])?;
-    disasm::check_kimgrip()
+    disasm::check_kimgrip()?;
+    regression::check_kimgrip_count()
 }
 
 fn section(title: &str) {

@@ -88,7 +88,7 @@ const STEPS: &[Step] = &[
         action: end_to_end,
     },
     Step {
-        title: "bench-firmware: fmt, clippy, KimGrip f32 disassembly (vsqrt.f32, no soft f64)",
+        title: "bench-firmware: fmt, clippy, KimGrip f32 disassembly (vsqrt.f32, no soft f64), instruction count within 5 % of the baseline",
         action: crate::bench::check,
     },
 ];

@@ -170,7 +170,12 @@ fn run_qemu(elf: &Path, listing: &Path, timeout: Duration) -> Result {
 }
 
 /// As [`run_qemu`], with `extra` QEMU options.
-fn run_qemu_with(extra: &[&str], elf: &Path, listing: &Path, timeout: Duration) -> Result {
+pub(super) fn run_qemu_with(
+    extra: &[&str],
+    elf: &Path,
+    listing: &Path,
+    timeout: Duration,
+) -> Result {
     let out = File::create(listing)
         .map_err(|e| Failure::new(format!("creating {}: {e}", listing.display())))?;
     let mut qemu = Command::new("qemu-system-arm");
