@@ -522,11 +522,15 @@ impl<'a, 'de, 's> de::Deserializer<'de> for &'a mut Deserializer<'de, 's> {
                 }
             };
 
-            string_unescape_buffer
+            let destination = string_unescape_buffer
                 .get_mut(string_unescape_buffer_write_position..)
                 .and_then(|rest| rest.get_mut(..unescaped_bytes.len()))
-                .ok_or(Error::EscapedStringIsTooLong)?
-                .copy_from_slice(unescaped_bytes);
+                .ok_or(Error::EscapedStringIsTooLong)?;
+            // cuesight patch: element-wise, no `copy_from_slice` length-check panic path
+            // (see `Serializer::extend_from_slice`).
+            for (to, from) in destination.iter_mut().zip(unescaped_bytes) {
+                *to = *from;
+            }
 
             string_unescape_buffer_write_position += unescaped_bytes.len();
         }
