@@ -64,6 +64,8 @@ pub enum Field {
     BallIndex,
     /// Number of balls (capacity of the scene).
     BallCount,
+    /// Index of a pocket of the table.
+    Pocket,
 }
 
 impl Field {
@@ -93,6 +95,7 @@ impl Field {
             Field::Aim => "aim",
             Field::BallIndex => "ball",
             Field::BallCount => "balls",
+            Field::Pocket => "pocket",
             Field::CueSpeed => "cue_speed",
             Field::CueMass => "cue_mass",
             Field::TipRestitution => "tip_restitution",
@@ -124,6 +127,7 @@ impl Field {
             Field::Aim => "a non-zero finite direction",
             Field::BallIndex => "an index of a ball in the scene",
             Field::BallCount => "1..=16 balls",
+            Field::Pocket => "an index of a pocket of the table",
             Field::CueSpeed => "(0, 20] m/s",
             Field::CueMass => "[0.1, 2] kg",
             Field::TipRestitution => "[0, 1]",

@@ -29,6 +29,7 @@ mod error;
 mod estimate;
 mod exact;
 mod friction;
+pub mod guidance;
 mod ideal;
 mod impact;
 mod kim;

@@ -14,15 +14,14 @@ pub mod report;
 use std::fmt;
 use std::process::ExitCode;
 
-use cuesight::aim::{solve_aim, AimError, AimSolution};
+use cuesight::aim::{AimError, AimSolution};
+use cuesight::guidance::{guide, Aim, Guidance, Target};
 use cuesight::shot::{play, Shot, Stroke};
-use cuesight::travel::{Motion, GRAVITY};
-use cuesight::{select_model, Model, Vec3};
+use cuesight::travel::Motion;
 
+pub use cuesight::guidance::{End, PathEnd};
 pub use input::{Flags, Request};
-pub use report::{to_json, End, PathEnd, ShotReport};
-
-use report::{BallReport, ContactReport, SolveReport, StrokeReport, TableReport, TargetReport};
+pub use report::{to_json, ShotReport};
 
 /// Exit code for an invalid value, no solution, or an output file not written.
 pub const EXIT_INVALID: u8 = crate::cli::EXIT_INVALID;
@@ -81,6 +80,8 @@ pub struct Played {
     pub cue_end: PathEnd,
     /// How far the object ball's path goes.
     pub object_end: Option<PathEnd>,
+    /// The core's guidance, which the report presents.
+    pub guidance: Guidance,
     /// The answer.
     pub report: ShotReport,
 }
@@ -106,7 +107,8 @@ fn aim_error(error: AimError, object: usize, pocket: String) -> ShotError {
 }
 
 /// Play a validated request: solve the aim if none is given, then run the forward chain
-/// at the aim and report.
+/// at the aim and report. The numbers come from the core's [`guide`], as the firmware's
+/// `shot` answer does; this adds the scene echo and the pocket names.
 pub fn play_request(request: Request) -> Result<Played, ShotError> {
     let scene = &request.scene;
     let table = scene.table();
@@ -118,11 +120,12 @@ pub fn play_request(request: Request) -> Result<Played, ShotError> {
         .object
         .or((ball_count > 1).then_some(1))
         .filter(|&o| o < ball_count);
-    let (stroke, solution) = match request.aim_deg {
-        Some(deg) => (
-            Stroke::at_angle(request.speed, request.tip, deg.to_radians()).map_err(invalid)?,
-            None,
-        ),
+    let target = request
+        .pocket
+        .zip(object)
+        .map(|(pocket, object)| Target { object, pocket });
+    let aim = match request.aim_deg {
+        Some(aim_deg) => Aim::Degrees { aim_deg, target },
         None => {
             let pocket = request.pocket.ok_or_else(|| {
                 ShotError::usage(if table.pockets().is_empty() {
@@ -139,121 +142,29 @@ pub fn play_request(request: Request) -> Result<Played, ShotError> {
                 ShotError::invalid("nothing to pocket: the scene has no ball besides the cue ball")
             })?;
             check_cut(scene, object, pocket)?;
-            let solution = solve_aim(scene, object, pocket, request.speed, request.tip, setup)
-                .map_err(|e| aim_error(e, object, input::pocket_phrase(table, pocket)))?;
-            let stroke = Stroke::new(request.speed, request.tip, [solution.aim.x, solution.aim.y])
-                .map_err(invalid)?;
-            (stroke, Some(solution))
+            Aim::Solve(Target { object, pocket })
         }
     };
+    let guidance = guide(scene, request.speed, request.tip, aim, setup).map_err(|e| {
+        let target = target.unwrap_or(Target {
+            object: object.unwrap_or(1),
+            pocket: request.pocket.unwrap_or(0),
+        });
+        aim_error(e, target.object, input::pocket_phrase(table, target.pocket))
+    })?;
+    let stroke = Stroke::new(request.speed, request.tip, guidance.stroke.aim).map_err(invalid)?;
     let shot = play(scene, &stroke, setup).map_err(invalid)?;
-    let radius = scene.radius();
-
-    let contact = shot.contact.as_ref();
-    let cue_motion = contact.map_or(shot.cue_before, |c| c.cue_after);
-    let cue_end = PathEnd::of(&cue_motion, table, radius);
-    let object_end = contact.map(|c| PathEnd::of(&c.object_after, table, radius));
-    let start_velocity = |m: &Motion| {
-        let v = m.initial_velocity;
-        Vec3::new(v.x, v.y, 0.5 * GRAVITY * m.air_time)
-    };
-
-    let aim = stroke.aim();
-    let aim_deg = request
-        .aim_deg
-        .unwrap_or_else(|| aim.y.atan2(aim.x).to_degrees());
-    let launch = &shot.cue_before;
-    let stroke_report = StrokeReport {
-        cue_speed: request.speed,
-        tip: request.tip_radii,
-        aim_deg,
-        aim: [aim.x, aim.y],
-        launch_speed: launch.initial_velocity.length(),
-        launch_spin: launch.initial_spin.to_array(),
-    };
-    let solve_report = solution.as_ref().map(|s| SolveReport {
-        object: object.unwrap_or(1),
-        pocket: request.pocket.unwrap_or(0),
-        pocket_name: input::pocket_name(table, request.pocket.unwrap_or(0)),
-        aim_deg,
-        naive_aim_deg: s.naive_aim.y.atan2(s.naive_aim.x).to_degrees(),
-        correction_deg: s.correction_deg,
-        correction_offset: 1e-3 * s.correction_mm,
-        thinner: s.thinner,
-        cut_deg: s.cut_angle_deg,
-        ghost_ball: [s.ghost_ball.x, s.ghost_ball.y],
-        naive_ghost_ball: [s.naive_ghost_ball.x, s.naive_ghost_ball.y],
-        evaluations: s.evaluations,
-        residual: s.residual,
-    });
-    let contact_report = contact.map(|c| {
-        let (used, estimate) = match setup.model {
-            Model::Auto { tolerance } => {
-                let (tier, estimate) = select_model(&setup.params, &c.impact, tolerance);
-                (tier, Some(estimate))
-            }
-            model => (model, None),
-        };
-        ContactReport {
-            ball: c.object_ball,
-            time: c.time,
-            cue_position: [c.cue_position.x, c.cue_position.y],
-            line_of_centres: [c.line_of_centres.x, c.line_of_centres.y],
-            cut_deg: c.cut_angle.to_degrees(),
-            speed: shot.cue_before.velocity_at(c.time).length(),
-            spin: shot.cue_before.spin_at(c.time).to_array(),
-            model: setup.model.name(),
-            model_used: used.name(),
-            error_estimate: estimate,
-            regime: c.outcome.regime.name(),
-            throw_deg: c.outcome.throw_angle_deg(),
-        }
-    });
-    let cue_ball = BallReport::new(0, &cue_motion, start_velocity(&cue_motion), cue_end, table);
-    let object_ball = contact.zip(object_end).map(|(c, end)| {
-        BallReport::new(
-            c.object_ball,
-            &c.object_after,
-            start_velocity(&c.object_after),
-            end,
-            table,
-        )
-    });
-    let target = request.pocket.zip(object).map(|(pocket, object)| {
-        let hit = contact.filter(|c| c.object_ball == object);
-        let miss = hit.and_then(|c| mouth_miss(&c.object_after, table, pocket));
-        let pocketed = hit.is_some()
-            && object_end.is_some_and(|e| e.end == End::Pocket && e.pocket == Some(pocket));
-        TargetReport {
-            object,
-            pocket,
-            pocket_name: input::pocket_name(table, pocket),
-            pocketed,
-            miss,
-        }
-    });
-    let report = ShotReport {
-        mode: if solution.is_some() { "solve" } else { "play" },
-        table: TableReport::new(request.table_name, table, radius, request.mass),
-        balls: scene.balls().iter().map(|b| [b.x, b.y]).collect(),
-        mu_cloth: setup.cloth.sliding(),
-        mu_roll: setup.cloth.rolling(),
-        stroke: stroke_report,
-        solve: solve_report,
-        contact: contact_report,
-        cue_ball,
-        object_ball,
-        target,
-    };
+    let report = ShotReport::new(&request, &guidance);
     Ok(Played {
-        request,
         stroke,
-        solution,
+        solution: guidance.solve.map(|s| s.solution),
         shot,
-        cue_motion,
-        cue_end,
-        object_end,
+        cue_motion: guidance.cue_ball.motion,
+        cue_end: guidance.cue_ball.end,
+        object_end: guidance.object_ball.map(|b| b.end),
+        guidance,
         report,
+        request,
     })
 }
 
@@ -282,18 +193,6 @@ fn check_cut(
         )));
     }
     Ok(())
-}
-
-/// Where `motion`'s centre crosses pocket `pocket`'s mouth line (its target segment
-/// extended), from the target centre along the segment (m, signed) — the miss the aim
-/// solver drives to zero. Cushions are ignored.
-fn mouth_miss(motion: &Motion, table: &cuesight::table::Table, pocket: usize) -> Option<f32> {
-    let p = table.pockets().get(pocket)?;
-    let centre = p.centre();
-    let along = p.b - p.a;
-    let along = along * (1.0 / along.length());
-    let t = motion.crossing(centre - along * 20.0, centre + along * 20.0)?;
-    Some(along.dot(motion.position_at(t) - centre))
 }
 
 /// Run `cuesight shot`: print the guidance (or JSON), write the SVG if asked; errors as

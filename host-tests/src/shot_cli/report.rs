@@ -7,99 +7,16 @@
 
 use std::fmt;
 
+use cuesight::guidance::{BallPath, End, Guidance};
 use cuesight::table::Table;
-use cuesight::travel::Motion;
 use cuesight::Vec3;
 use serde::Serialize;
 
-use super::input::pocket_name;
+use super::input::{pocket_name, Request};
 
-/// How far a ball's path is followed.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum End {
-    /// It stops on the cloth.
-    Rest,
-    /// Its centre crosses a pocket's target segment.
-    Pocket,
-    /// Its centre reaches a cushion line (one radius from the rail): cushions are not
-    /// modelled, so the path stops there.
-    Cushion,
-}
-
-/// Where and when a motion's path ends: the first of the pocket crossing, leaving the
-/// playing surface, and stopping.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PathEnd {
-    /// Time from the motion's start (s).
-    pub time: f32,
-    /// Why.
-    pub end: End,
-    /// The pocket, for [`End::Pocket`].
-    pub pocket: Option<usize>,
-}
-
-impl PathEnd {
-    /// Follow `motion` on `table` for a ball of `radius`.
-    pub fn of(motion: &Motion, table: &Table, radius: f32) -> Self {
-        let stop = motion.stop_time();
-        let pocket = table
-            .pockets()
-            .iter()
-            .enumerate()
-            .filter_map(|(i, p)| motion.crossing(p.a, p.b).map(|t| (i, t)))
-            .min_by(|a, b| a.1.total_cmp(&b.1));
-        let cushion = leaves_table(motion, table, radius, pocket.map_or(stop, |(_, t)| t));
-        match (pocket, cushion) {
-            (_, Some(t)) => Self {
-                time: t,
-                end: End::Cushion,
-                pocket: None,
-            },
-            (Some((i, t)), None) => Self {
-                time: t,
-                end: End::Pocket,
-                pocket: Some(i),
-            },
-            (None, None) => Self {
-                time: stop,
-                end: End::Rest,
-                pocket: None,
-            },
-        }
-    }
-}
-
-/// First time before `until` at which the centre leaves `[R, L − R] × [R, W − R]`
-/// (sampled, then bisected to 1e-7 s).
-fn leaves_table(motion: &Motion, table: &Table, radius: f32, until: f32) -> Option<f32> {
-    let slack = 1e-6;
-    let outside = |t: f32| {
-        let p = motion.position_at(t);
-        p.x < radius - slack
-            || p.y < radius - slack
-            || p.x > table.length() - radius + slack
-            || p.y > table.width() - radius + slack
-    };
-    const SAMPLES: u32 = 4096;
-    let mut previous = 0.0;
-    for i in 1..=SAMPLES {
-        let t = until * i as f32 / SAMPLES as f32;
-        if outside(t) {
-            let (mut lo, mut hi) = (previous, t);
-            for _ in 0..40 {
-                let mid = 0.5 * (lo + hi);
-                if outside(mid) {
-                    hi = mid;
-                } else {
-                    lo = mid;
-                }
-            }
-            return Some(lo);
-        }
-        previous = t;
-    }
-    None
+/// Serialize a path end by its name (`rest`, `pocket`, `cushion`).
+fn end_name<S: serde::Serializer>(end: &End, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.serialize_str(end.name())
 }
 
 fn xy(v: Vec3) -> [f32; 2] {
@@ -282,6 +199,7 @@ pub struct BallReport {
     /// Where it would stop on an unbounded cloth (m).
     pub rest: [f32; 2],
     /// How its path ends: `rest`, `pocket`, or `cushion` (not modelled beyond).
+    #[serde(serialize_with = "end_name")]
     pub end: End,
     /// When (s from the start).
     pub end_time: f32,
@@ -294,19 +212,14 @@ pub struct BallReport {
 }
 
 impl BallReport {
-    /// Report `motion` of ball `ball`, followed as far as `end`.
-    pub fn new(
-        ball: usize,
-        motion: &Motion,
-        start_velocity: Vec3,
-        end: PathEnd,
-        table: &Table,
-    ) -> Self {
+    /// Present the core's path of one ball on `table`.
+    pub fn new(path: &BallPath, table: &Table) -> Self {
+        let motion = &path.motion;
         let rolling = motion.rolling_velocity;
         Self {
-            ball,
+            ball: path.ball,
             start: xy(motion.start),
-            velocity: start_velocity.to_array(),
+            velocity: path.velocity,
             spin: motion.initial_spin.to_array(),
             hop_height: motion.hop_height,
             air_time: motion.air_time,
@@ -315,14 +228,14 @@ impl BallReport {
             rolling_start: xy(motion.rolling_start()),
             rolling_velocity: xy(rolling),
             rolling_speed: rolling.length(),
-            rolling_direction_deg: direction_deg(rolling),
+            rolling_direction_deg: path.rolling_direction_deg,
             stop_time: motion.stop_time(),
             rest: xy(motion.rest()),
-            end: end.end,
-            end_time: end.time,
-            end_position: xy(motion.position_at(end.time)),
-            pocket: end.pocket,
-            pocket_name: end.pocket.map(|i| pocket_name(table, i)),
+            end: path.end.end,
+            end_time: path.end.time,
+            end_position: path.end_position,
+            pocket: path.end.pocket,
+            pocket_name: path.end.pocket.map(|i| pocket_name(table, i)),
         }
     }
 }
@@ -396,6 +309,68 @@ fn cut_side(cut_deg: f32) -> &'static str {
 }
 
 impl ShotReport {
+    /// Present the core's `guidance` for `request`: the scene echo, the pocket names,
+    /// and every number of the guidance.
+    pub fn new(request: &Request, guidance: &Guidance) -> Self {
+        let scene = &request.scene;
+        let table = scene.table();
+        let setup = &request.setup;
+        let g = guidance;
+        Self {
+            mode: if g.solve.is_some() { "solve" } else { "play" },
+            table: TableReport::new(request.table_name, table, scene.radius(), request.mass),
+            balls: scene.balls().iter().map(|b| [b.x, b.y]).collect(),
+            mu_cloth: setup.cloth.sliding(),
+            mu_roll: setup.cloth.rolling(),
+            stroke: StrokeReport {
+                cue_speed: g.stroke.cue_speed,
+                tip: request.tip_radii,
+                aim_deg: g.stroke.aim_deg,
+                aim: g.stroke.aim,
+                launch_speed: g.stroke.launch_speed,
+                launch_spin: g.stroke.launch_spin,
+            },
+            solve: g.solve.map(|s| SolveReport {
+                object: s.target.object,
+                pocket: s.target.pocket,
+                pocket_name: pocket_name(table, s.target.pocket),
+                aim_deg: s.aim_deg,
+                naive_aim_deg: s.naive_aim_deg,
+                correction_deg: s.solution.correction_deg,
+                correction_offset: 1e-3 * s.solution.correction_mm,
+                thinner: s.solution.thinner,
+                cut_deg: s.solution.cut_angle_deg,
+                ghost_ball: xy(s.solution.ghost_ball),
+                naive_ghost_ball: xy(s.solution.naive_ghost_ball),
+                evaluations: s.solution.evaluations,
+                residual: s.solution.residual,
+            }),
+            contact: g.contact.map(|c| ContactReport {
+                ball: c.ball,
+                time: c.time,
+                cue_position: c.cue_position,
+                line_of_centres: c.line_of_centres,
+                cut_deg: c.cut_deg,
+                speed: c.speed,
+                spin: c.spin,
+                model: c.model.name(),
+                model_used: c.model_used.name(),
+                error_estimate: c.error_estimate,
+                regime: c.regime.name(),
+                throw_deg: c.throw_deg,
+            }),
+            cue_ball: BallReport::new(&g.cue_ball, table),
+            object_ball: g.object_ball.map(|b| BallReport::new(&b, table)),
+            target: g.target.map(|t| TargetReport {
+                object: t.target.object,
+                pocket: t.target.pocket,
+                pocket_name: pocket_name(table, t.target.pocket),
+                pocketed: t.pocketed,
+                miss: t.miss,
+            }),
+        }
+    }
+
     fn table_for_names(&self) -> TableNames<'_> {
         TableNames(&self.table)
     }
