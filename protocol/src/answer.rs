@@ -14,9 +14,12 @@ use serde::{Deserialize, Serialize};
 use crate::names::{ModelName, RegimeName};
 use crate::problem::{ErrorKind, Message, Name};
 use crate::request::{law_components, Defaults};
+use crate::shot::ShotAnswer;
 
 /// One answer line.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+// No heap to box into: an answer is built on the stack and serialized at once.
+#[allow(clippy::large_enum_variant)]
 #[serde(rename_all = "snake_case")]
 pub enum Answer {
     /// To `collide`.
@@ -27,6 +30,10 @@ pub enum Answer {
     Stroke(StrokeAnswer),
     /// To a `stroke` chunk with `"more":true`: the samples held so far.
     StrokeChunk(StrokeChunkAnswer),
+    /// To `shot`: the guidance. Serialized only: a host reads it as plain JSON (its
+    /// keys are those of `cuesight shot --json`).
+    #[serde(skip_deserializing)]
+    Shot(ShotAnswer),
     /// To `version`.
     Version(VersionAnswer),
     /// To `shutdown`, just before the firmware exits.

@@ -18,6 +18,7 @@ use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visit
 use crate::names::ModelName;
 use crate::problem::{Name, NotARequest, Problem};
 use crate::request::{Collide, Overrides, Request, Spin, Stroke};
+use crate::shot::{Shot, TableName, MAX_OBJECT_BALLS};
 use crate::{json, MAX_SAMPLES};
 
 /// Decode one request line (without its newline).
@@ -105,6 +106,11 @@ const OBJECT: &str = "an object of the request's fields";
 const EMPTY: &str = "an empty object {}";
 const SAMPLES: &str = "an array of raw samples, integers in -32768..=32767";
 const TIP: &str = "[side, height], two numbers (m)";
+const POINT: &str = "[x, y], two numbers (m)";
+const BALLS: &str = "an array of [x, y] ball centres (m)";
+const TABLE: &str = "a table name (a string)";
+const INDEX: &str = "a non-negative integer";
+const TIP_RADII: &str = "[side, height], two numbers (ball radii)";
 
 struct RequestSeed<'d> {
     diag: &'d mut Diag,
@@ -134,6 +140,7 @@ impl<'de> Visitor<'de> for RequestSeed<'_> {
             "collide" => Request::Collide(diag.body(&mut map, "collide", OBJECT)?),
             "params" => Request::Params(diag.body(&mut map, "params", OBJECT)?),
             "stroke" => Request::Stroke(diag.body(&mut map, "stroke", OBJECT)?),
+            "shot" => Request::Shot(diag.body(&mut map, "shot", OBJECT)?),
             "version" => {
                 diag.body::<_, ()>(&mut map, "version", EMPTY)?;
                 Request::Version
@@ -203,6 +210,7 @@ fn unknown<E: de::Error>(diag: &mut Diag, request: &'static str, field: &str) ->
             "collide" => Collide::EXPECTED,
             "params" => Overrides::EXPECTED,
             "stroke" => Stroke::EXPECTED,
+            "shot" => Shot::EXPECTED,
             _ => "no fields",
         },
     })
@@ -378,6 +386,125 @@ impl Body for Stroke {
             cue_mass,
             tip_restitution,
         })
+    }
+}
+
+impl Body for Shot {
+    const NAME: &'static str = "shot";
+    const EXPECTED: &'static str = "table, cue, balls, speed, tip, aim, object, pocket, mu_cloth, \
+         mu_roll, cue_mass, tip_restitution, mu, mu_b, mu_c, restitution, mu_s, mass, model";
+
+    fn read<'de, A: MapAccess<'de>>(mut map: A, diag: &mut Diag) -> Result<Self, A::Error> {
+        let (mut table, mut cue, mut speed, mut tip) = (None::<&str>, None, None, None);
+        let (mut balls, mut have_balls) = (Vec::new(), false);
+        let (mut aim, mut object, mut pocket) = (None, None, None);
+        let (mut mu_cloth, mut mu_roll, mut cue_mass, mut tip_restitution) =
+            (None, None, None, None);
+        let mut with = Overrides::default();
+        let mut model = None;
+        while let Some(key) = map.next_key::<&str>()? {
+            match key {
+                "table" => diag.value(&mut map, "table", TABLE, &mut table)?,
+                "cue" => diag.value::<_, [f32; 2]>(&mut map, "cue", POINT, &mut cue)?,
+                "balls" => {
+                    if have_balls {
+                        return Err(diag.fail(Problem::DuplicateField("balls")));
+                    }
+                    diag.at = Some(("balls", BALLS));
+                    map.next_value_seed(BallsSeed {
+                        diag: &mut *diag,
+                        out: &mut balls,
+                    })?;
+                    have_balls = true;
+                    diag.at = None;
+                }
+                "speed" => diag.value(&mut map, "speed", NUMBER, &mut speed)?,
+                "tip" => diag.value::<_, [f32; 2]>(&mut map, "tip", TIP_RADII, &mut tip)?,
+                "aim" => diag.value(&mut map, "aim", NUMBER, &mut aim)?,
+                "object" => diag.value(&mut map, "object", INDEX, &mut object)?,
+                "pocket" => diag.value(&mut map, "pocket", INDEX, &mut pocket)?,
+                "mu_cloth" => diag.value(&mut map, "mu_cloth", NUMBER, &mut mu_cloth)?,
+                "mu_roll" => diag.value(&mut map, "mu_roll", NUMBER, &mut mu_roll)?,
+                "cue_mass" => diag.value(&mut map, "cue_mass", NUMBER, &mut cue_mass)?,
+                "tip_restitution" => {
+                    diag.value(&mut map, "tip_restitution", NUMBER, &mut tip_restitution)?
+                }
+                // The balls are the table's set: their radius is not a shot field.
+                "radius" => return Err(unknown(diag, Self::NAME, key)),
+                _ => {
+                    if !read_override(&mut map, diag, key, &mut with, &mut model)? {
+                        return Err(unknown(diag, Self::NAME, key));
+                    }
+                }
+            }
+        }
+        with.model = parse_model(diag, model)?;
+        let table = match table {
+            None => TableName::default(),
+            Some(name) => TableName::from_name(name).ok_or_else(|| {
+                diag.fail(Problem::InvalidValue {
+                    field: "table",
+                    expected: TableName::NAMES,
+                })
+            })?,
+        };
+        let Some(cue) = cue else {
+            return Err(diag.fail(Problem::MissingField("cue")));
+        };
+        let Some(speed) = speed else {
+            return Err(diag.fail(Problem::MissingField("speed")));
+        };
+        Ok(Shot {
+            table,
+            cue,
+            balls,
+            speed,
+            tip: tip.unwrap_or([0.0; 2]),
+            aim,
+            object,
+            pocket,
+            mu_cloth,
+            mu_roll,
+            cue_mass,
+            tip_restitution,
+            with,
+        })
+    }
+}
+
+/// The `balls` array of a `shot`, into a fixed-capacity vector (`out`, in place).
+struct BallsSeed<'d> {
+    diag: &'d mut Diag,
+    out: &'d mut Vec<[f32; 2], MAX_OBJECT_BALLS>,
+}
+
+impl<'de> DeserializeSeed<'de> for BallsSeed<'_> {
+    type Value = ();
+
+    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<Self::Value, D::Error> {
+        deserializer.deserialize_seq(self)
+    }
+}
+
+impl<'de> Visitor<'de> for BallsSeed<'_> {
+    type Value = ();
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(BALLS)
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
+        let balls = self.out;
+        balls.clear();
+        while let Some(ball) = seq.next_element::<[f32; 2]>()? {
+            if balls.push(ball).is_err() {
+                return Err(self.diag.fail(Problem::TooMany {
+                    field: "balls",
+                    limit: MAX_OBJECT_BALLS,
+                }));
+            }
+        }
+        Ok(())
     }
 }
 

@@ -5,6 +5,7 @@ use core::fmt::{self, Write};
 
 use serde::{Deserialize, Serialize};
 
+use cuesight::aim::AimError;
 use cuesight_sensors::{ConfigField, StrokeError};
 
 use crate::answer::ErrorAnswer;
@@ -101,6 +102,9 @@ pub enum ErrorKind {
     Unsupported,
     /// The `stroke` samples hold no usable stroke (no rest, no impact, saturated, ...).
     StrokeRejected,
+    /// `shot`: no aim pockets the ball (it is not hit first, cannot reach the pocket,
+    /// or the solver did not converge).
+    NoAim,
     /// The answer did not fit the answer buffer (a bug: sizes are checked by tests).
     Internal,
 }
@@ -124,6 +128,7 @@ impl ErrorKind {
             ErrorKind::NumericalFailure => "numerical_failure",
             ErrorKind::Unsupported => "unsupported",
             ErrorKind::StrokeRejected => "stroke_rejected",
+            ErrorKind::NoAim => "no_aim",
             ErrorKind::Internal => "internal",
         }
     }
@@ -203,6 +208,9 @@ pub enum Problem {
     Value(cuesight::Error),
     /// The stroke estimator refused the samples or its settings.
     Stroke(StrokeError),
+    /// `shot`: the aim solver found no aim (the reason; never `AimError::Invalid`,
+    /// which is a [`Problem::Value`]).
+    NoAim(AimError),
     /// A request this device cannot answer.
     Unsupported {
         /// The field or request concerned.
@@ -210,6 +218,15 @@ pub enum Problem {
         /// Why.
         reason: &'static str,
     },
+}
+
+impl From<AimError> for Problem {
+    fn from(error: AimError) -> Self {
+        match error {
+            AimError::Invalid(error) => Problem::Value(error),
+            other => Problem::NoAim(other),
+        }
+    }
 }
 
 impl From<cuesight::Error> for Problem {
@@ -237,6 +254,7 @@ impl Problem {
                 value_kind(error)
             }
             Problem::Unsupported { .. } => ErrorKind::Unsupported,
+            Problem::NoAim(_) => ErrorKind::NoAim,
             Problem::Stroke(StrokeError::InvalidConfig(_) | StrokeError::NotFinite { .. }) => {
                 ErrorKind::OutOfRange
             }
@@ -259,6 +277,7 @@ impl Problem {
             | Problem::TooMany { field, .. }
             | Problem::Unsupported { field, .. } => Some(Name::of(field)),
             Problem::UnknownModel(_) => Some(Name::of("model")),
+            Problem::NoAim(_) => Some(Name::of("pocket")),
             Problem::Value(error) => error.field().map(|f| Name::of(f.name())),
             Problem::Stroke(error) => Some(Name::of(stroke_field(error))),
         }
@@ -343,6 +362,17 @@ impl fmt::Display for Problem {
             Problem::Value(error) => write_value_error(f, error),
             Problem::Stroke(error) => write_stroke_error(f, error),
             Problem::Unsupported { field, reason } => write!(f, "{field}: {reason}"),
+            Problem::NoAim(error) => f.write_str(match error {
+                AimError::ObjectBallNotHit => {
+                    "no aim: at the ghost-ball aim the cue ball does not reach the object ball first (another ball in the way, or too slow)"
+                }
+                AimError::PocketUnreachable => {
+                    "no aim: the object ball cannot reach the pocket (it stops short, or the cut is too thin)"
+                }
+                AimError::NotConverged | AimError::Invalid(_) => {
+                    "no aim: the solver did not converge (the cut may be too thin)"
+                }
+            }),
         }
     }
 }

@@ -12,6 +12,7 @@ use serde::ser::{Serialize, SerializeStruct, Serializer};
 
 use crate::answer::InputEcho;
 use crate::names::ModelName;
+use crate::shot::Shot;
 use crate::MAX_SAMPLES;
 
 /// One request.
@@ -26,6 +27,8 @@ pub enum Request {
     Params(Overrides),
     /// Estimate a stroke from raw accelerometer samples.
     Stroke(Stroke),
+    /// Shot guidance: aim, throw correction, both balls' paths (`cuesight shot`).
+    Shot(Shot),
     /// Protocol and firmware versions, buffer limits.
     Version,
     /// End the session: the firmware answers, then exits (QEMU exits 0).
@@ -34,7 +37,8 @@ pub enum Request {
 
 impl Request {
     /// Every request name, as on the wire.
-    pub const NAMES: [&'static str; 5] = ["collide", "params", "stroke", "version", "shutdown"];
+    pub const NAMES: [&'static str; 6] =
+        ["collide", "params", "stroke", "shot", "version", "shutdown"];
 
     /// The request's wire name.
     pub const fn name(&self) -> &'static str {
@@ -42,6 +46,7 @@ impl Request {
             Request::Collide(_) => "collide",
             Request::Params(_) => "params",
             Request::Stroke(_) => "stroke",
+            Request::Shot(_) => "shot",
             Request::Version => "version",
             Request::Shutdown => "shutdown",
         }
@@ -126,7 +131,7 @@ impl Overrides {
         })
     }
 
-    fn serialize_fields<S: SerializeStruct>(&self, s: &mut S) -> Result<(), S::Error> {
+    pub(crate) fn serialize_fields<S: SerializeStruct>(&self, s: &mut S) -> Result<(), S::Error> {
         let numbers = [
             ("mu", self.mu),
             ("mu_b", self.mu_b),
@@ -148,7 +153,7 @@ impl Overrides {
         }
     }
 
-    fn count(&self) -> usize {
+    pub(crate) fn count(&self) -> usize {
         [
             self.mu,
             self.mu_b,
@@ -349,8 +354,9 @@ impl Serialize for Request {
             }
             Request::Params(body) => serializer.serialize_newtype_variant("Request", 1, name, body),
             Request::Stroke(body) => serializer.serialize_newtype_variant("Request", 2, name, body),
-            Request::Version => serializer.serialize_newtype_variant("Request", 3, name, &Empty),
-            Request::Shutdown => serializer.serialize_newtype_variant("Request", 4, name, &Empty),
+            Request::Shot(body) => serializer.serialize_newtype_variant("Request", 3, name, body),
+            Request::Version => serializer.serialize_newtype_variant("Request", 4, name, &Empty),
+            Request::Shutdown => serializer.serialize_newtype_variant("Request", 5, name, &Empty),
         }
     }
 }

@@ -3,6 +3,7 @@
 //! few lines and everything here is tested on the host.
 
 use cuesight::collide;
+use cuesight::guidance::guide;
 use cuesight::strike::{Cue, TipOffset};
 use cuesight_sensors::{estimate_raw, StrokeConfig, StrokeError, ACCEL_MPS2_PER_LSB};
 use heapless::Vec;
@@ -16,6 +17,7 @@ use crate::line::Event;
 use crate::names::ModelName;
 use crate::problem::{ErrorKind, Message, Name, Problem};
 use crate::request::{Collide, Defaults, Overrides, Request, Stroke};
+use crate::shot::{Shot, ShotAnswer};
 use crate::{MAX_ANSWER, MAX_LINE, MAX_SAMPLES, PROTOCOL_VERSION, STROKE_CAPACITY};
 
 /// An answer line: JSON and its `\n`.
@@ -150,6 +152,7 @@ impl Session {
             Request::Collide(collide) => Answer::Collide(self.collide(collide)?),
             Request::Params(overrides) => Answer::Params(self.set_params(overrides)?),
             Request::Stroke(stroke) => self.stroke(stroke)?,
+            Request::Shot(shot) => Answer::Shot(self.shot(shot)?),
             Request::Version => Answer::Version(self.version()),
             Request::Shutdown => {
                 let answer = Answer::Shutdown(ShutdownAnswer {
@@ -167,6 +170,23 @@ impl Session {
         let model = core_model(prepared.model)?;
         let outcome = collide(&prepared.params, &prepared.impact, model)?;
         Ok(CollideAnswer::new(prepared.model, prepared.input, &outcome))
+    }
+
+    fn shot(&self, request: &Shot) -> Result<ShotAnswer, Problem> {
+        let prepared = request.prepare(&self.defaults)?;
+        let speed = request.speed;
+        let guidance = guide(
+            &prepared.scene,
+            speed,
+            prepared.tip,
+            prepared.aim,
+            &prepared.setup,
+        )?;
+        Ok(ShotAnswer {
+            tip: request.tip,
+            model: prepared.model,
+            guidance,
+        })
     }
 
     fn set_params(&mut self, overrides: &Overrides) -> Result<ParamsAnswer, Problem> {
