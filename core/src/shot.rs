@@ -5,7 +5,9 @@
 //!    in its travel frame; with a level cue the cloth slip is along the aim, so the cue
 //!    ball travels straight (sliding, then rolling; [`crate::travel`]).
 //! 2. The first ball whose centre comes within `2R` of the cue ball's path is hit
-//!    (swept-sphere test, [`Scene::contact_distance`]), if the cue ball gets there.
+//!    (swept-sphere test, [`Scene::contact_distance`]), if the cue ball gets there with
+//!    some speed towards it (a ball it reaches at rest, or grazes within rounding, is
+//!    passed).
 //! 3. At contact the line of centres fixes the collision frame (physics-notes §1): the
 //!    cut angle and the collision-frame velocity and spin follow by projection, and the
 //!    chosen model (normally `Auto`) predicts the outcome.
@@ -154,27 +156,32 @@ where
     let spin = aim * travel_spin.x + side * travel_spin.y + Vec3::new(0.0, 0.0, travel_spin.z);
     let cue_before = Motion::new(cue_start, velocity, spin, radius, &setup.cloth);
 
-    // First ball on the path that the cue ball reaches.
-    let mut first: Option<(usize, f32)> = None;
-    for index in 1..scene.balls().len() {
-        if let Some(distance) = scene.contact_distance(aim, index) {
-            if first.is_none_or(|(_, d)| distance < d) {
-                first = Some((index, distance));
+    // First ball on the path that the cue ball reaches with some speed towards it. A
+    // ball it meets with no approach speed along the line of centres (it arrives at
+    // rest there, or grazes it within rounding) is not hit: the cue ball passes on.
+    const _: () = assert!(crate::table::MAX_BALLS <= 32);
+    let mut passed: u32 = 0; // one bit per ball index
+    let contact = loop {
+        let mut first: Option<(usize, f32)> = None;
+        for index in 1..scene.balls().len() {
+            if passed & (1 << index) != 0 {
+                continue;
+            }
+            if let Some(distance) = scene.contact_distance(aim, index) {
+                if first.is_none_or(|(_, d)| distance < d) {
+                    first = Some((index, distance));
+                }
             }
         }
-    }
-    let contact = match first
-        .and_then(|(index, distance)| Some((index, cue_before.time_to_reach(aim, distance)?)))
-    {
-        None => None,
-        Some((index, time)) => Some(collide_at(
-            scene,
-            setup,
-            &cue_before,
-            index,
-            time,
-            &mut collision,
-        )?),
+        let Some((index, time)) = first
+            .and_then(|(index, distance)| Some((index, cue_before.time_to_reach(aim, distance)?)))
+        else {
+            break None;
+        };
+        match collide_at(scene, setup, &cue_before, index, time, &mut collision)? {
+            Some(contact) => break Some(contact),
+            None => passed |= 1 << index,
+        }
     };
     Ok(Shot {
         launch,
@@ -190,7 +197,7 @@ fn collide_at<F>(
     index: usize,
     time: f32,
     collision: &mut F,
-) -> Result<Contact>
+) -> Result<Option<Contact>>
 where
     F: FnMut(&Params, &Impact) -> Result<Outcome>,
 {
@@ -203,6 +210,9 @@ where
     let v = cue_before.velocity_at(time);
     let w = cue_before.spin_at(time);
     let (v_x, v_y) = (v.dot(centres), v.dot(across));
+    if v_x <= 0.0 || v_x.is_nan() {
+        return Ok(None); // no approach: no collision
+    }
     let impact = Impact::from_velocity([v_x, v_y], [w.dot(centres), w.dot(across), w.z])?;
     let outcome = collision(&setup.params, &impact)?;
     let to_table = |c: Vec3| centres * c.x + across * c.y + Vec3::new(0.0, 0.0, c.z);
@@ -234,7 +244,7 @@ where
             }
         }
     }
-    Ok(Contact {
+    Ok(Some(Contact {
         object_ball: index,
         time,
         cue_position,
@@ -245,5 +255,74 @@ where
         cue_after,
         object_after,
         pocket,
-    })
+    }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::table::{BallSet, Table};
+
+    fn setup(model: Model) -> ShotSetup {
+        ShotSetup {
+            params: Params::POOL,
+            cue: Cue::TYPICAL,
+            cloth: Cloth::TYPICAL,
+            model,
+        }
+    }
+
+    /// Bisect `f32` inputs between `lo` (where `hit` is true) and `hi` to adjacent values.
+    fn bisect(mut lo: f32, mut hi: f32, hit: impl Fn(f32) -> bool) -> (f32, f32) {
+        assert!(hit(lo) && !hit(hi));
+        while lo.to_bits().abs_diff(hi.to_bits()) > 1 {
+            let mid = f32::from_bits((lo.to_bits() + hi.to_bits()) / 2);
+            if hit(mid) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        (lo, hi)
+    }
+
+    /// An aim that grazes the object ball to within rounding met it with a negative
+    /// normal velocity, and `play` refused the valid shot (`velocity.x` out of range).
+    /// Now such a graze is a miss; every aim across the hit/miss boundary plays.
+    #[test]
+    fn grazing_the_object_ball_within_rounding_is_a_miss_not_an_error() {
+        let r = BallSet::POOL.radius;
+        let mut scene = Scene::new(Table::pool(), r, [0.6, 0.508]).unwrap();
+        scene.add_ball([1.1, 0.608]).unwrap();
+        let setup = setup(Model::KimGrip);
+        let d = (0.5f32).hypot(0.1);
+        let boundary = (0.1f32).atan2(0.5) + (2.0 * r / d).asin();
+        let hit = |angle: f32| {
+            let stroke = Stroke::at_angle(3.0, TipOffset::CENTRE, angle).unwrap();
+            let shot = play(&scene, &stroke, &setup);
+            assert!(shot.is_ok(), "aim {angle}: {shot:?}");
+            shot.unwrap().contact.is_some()
+        };
+        bisect(boundary - 1e-4, boundary + 1e-4, hit);
+    }
+
+    /// A cue ball that stops exactly touching a ball arrived with zero speed, and `play`
+    /// refused the valid shot (`velocity.x = 0`). Now it is no collision; every cue speed
+    /// across the reach/stop-short boundary plays.
+    #[test]
+    fn cue_ball_stopping_exactly_at_a_ball_is_no_collision() {
+        let r = BallSet::POOL.radius;
+        // Both balls touching the end cushions (the case found: cue speed 0.7088298).
+        let table = Table::pool();
+        let mut scene = Scene::new(table.clone(), r, [r, 0.635]).unwrap();
+        scene.add_ball([table.length() - r, 0.635]).unwrap();
+        let setup = setup(Model::KimGrip);
+        let reaches = |speed: f32| {
+            let stroke = Stroke::new(speed, TipOffset::CENTRE, [1.0, 0.0]).unwrap();
+            let shot = play(&scene, &stroke, &setup);
+            assert!(shot.is_ok(), "cue speed {speed}: {shot:?}");
+            shot.unwrap().contact.is_some()
+        };
+        bisect(20.0, 0.1, reaches);
+    }
 }
