@@ -25,6 +25,9 @@ use crate::NU;
 /// Standard gravity (m/s²).
 pub const GRAVITY: f32 = 9.81;
 
+/// Smallest accepted cloth sliding friction and rolling resistance ([`Cloth::new`]).
+pub const MIN_CLOTH_FRICTION: f32 = 1e-3;
+
 /// Ball–cloth friction.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -41,11 +44,27 @@ impl Cloth {
         rolling: 0.01,
     };
 
-    /// Sliding friction `μ_c` in `(0, 1]` and rolling resistance `μ_r` in `(0, 0.5]`.
+    /// Sliding friction `μ_c` in `[0.001, 1]` and rolling resistance `μ_r` in
+    /// `[0.001, 0.5]`. Real cloths are far inside (μ_c 0.15–0.4, μ_r 0.005–0.015); the
+    /// lower bounds keep every time and distance finite: sliding lasts `2|u|/(7 μ_c g)`
+    /// and rolling `|v|/(μ_r g)`, which overflow f32 as μ → 0 (at μ = 1e-45 the motion
+    /// came out infinite and NaN).
     pub fn new(sliding: f32, rolling: f32) -> Result<Self> {
         Ok(Self {
-            sliding: check(Field::ClothFriction, sliding, 0.0, 1.0, true)?,
-            rolling: check(Field::RollingResistance, rolling, 0.0, 0.5, true)?,
+            sliding: check(
+                Field::ClothFriction,
+                sliding,
+                MIN_CLOTH_FRICTION,
+                1.0,
+                false,
+            )?,
+            rolling: check(
+                Field::RollingResistance,
+                rolling,
+                MIN_CLOTH_FRICTION,
+                0.5,
+                false,
+            )?,
         })
     }
 
@@ -474,6 +493,53 @@ mod tests {
             }
         }
         assert_eq!(gaps, 0, "targets near the switch not reached");
+    }
+
+    /// Cloth friction and rolling resistance down to the smallest positive f32 were
+    /// accepted; the motion then slid or rolled for an infinite time and its rolling
+    /// velocity and rest position were infinite or NaN. Now the smallest accepted values
+    /// give finite motions at the largest speeds and spins, and anything below is refused.
+    #[test]
+    fn cloth_friction_is_bounded_away_from_zero() {
+        use crate::error::Error;
+        for (sliding, rolling) in [
+            (f32::from_bits(1), 0.01),
+            (0.2, f32::from_bits(1)),
+            (9e-4, 0.01),
+            (0.2, 9e-4),
+        ] {
+            let field = if sliding < MIN_CLOTH_FRICTION {
+                Field::ClothFriction
+            } else {
+                Field::RollingResistance
+            };
+            let value = if sliding < MIN_CLOTH_FRICTION {
+                sliding
+            } else {
+                rolling
+            };
+            assert_eq!(
+                Cloth::new(sliding, rolling),
+                Err(Error::OutOfRange { field, value })
+            );
+        }
+        let least = Cloth::new(MIN_CLOTH_FRICTION, MIN_CLOTH_FRICTION).unwrap();
+        let m = Motion::new(
+            Vec3::new(1.0, 0.5, 0.0),
+            Vec3::new(100.0, -100.0, 20.0),
+            Vec3::new(1e4, -1e4, 1e4),
+            1.0,
+            &least,
+        );
+        for v in [
+            m.rolling_velocity,
+            m.rolling_start(),
+            m.rest(),
+            m.position_at(1e3),
+        ] {
+            assert!(v.is_finite(), "{m:?}");
+        }
+        assert!(m.stop_time().is_finite(), "{m:?}");
     }
 
     #[test]
