@@ -38,17 +38,23 @@ pub struct Stroke {
 }
 
 impl Stroke {
-    /// Stroke aimed along `direction` (table frame, any non-zero length).
+    /// Stroke aimed along `direction` (table frame, any finite non-zero length).
     pub fn new(cue_speed: f32, tip: TipOffset, direction: [f32; 2]) -> Result<Self> {
-        let x = check(Field::Aim, direction[0], -1e6, 1e6, false)?;
-        let y = check(Field::Aim, direction[1], -1e6, 1e6, false)?;
-        let length = math::sqrt(x * x + y * y);
-        if length == 0.0 {
+        let (x, y) = (direction[0], direction[1]);
+        if !math::is_finite(x) || !math::is_finite(y) {
+            return Err(Error::NotFinite { field: Field::Aim });
+        }
+        // Scaled by the larger component first, so that squaring neither underflows
+        // (a subnormal direction lost its digits or came out zero) nor overflows.
+        let scale = math::max(math::abs(x), math::abs(y));
+        if scale == 0.0 {
             return Err(Error::OutOfRange {
                 field: Field::Aim,
                 value: 0.0,
             });
         }
+        let (x, y) = (x / scale, y / scale);
+        let length = math::sqrt(x * x + y * y);
         Ok(Self {
             cue_speed,
             tip,
@@ -304,6 +310,51 @@ mod tests {
             shot.unwrap().contact.is_some()
         };
         bisect(boundary - 1e-4, boundary + 1e-4, hit);
+    }
+
+    /// Aim directions of any finite non-zero size give the unit aim they point along:
+    /// small components were squared into the subnormals or to zero (`[3e-22, -4e-22]`
+    /// came out 0.1 % off unit length, `[1e-38, 1e-45]` was refused as a zero
+    /// direction), and components above 1e6 were refused although finite.
+    #[test]
+    fn aim_directions_of_any_size_are_normalised() {
+        extern crate std;
+        let tiny = f32::from_bits(1);
+        for (x, y) in [
+            (tiny, 0.0f32),
+            (0.0, -tiny),
+            (3e-22, -4e-22),
+            (1e-40, 1e-40),
+            (3e-41, -4e-41),
+            (1e-38, 1e-45),
+            (3.0, 4.0),
+            (-3e38, 3e38),
+            (f32::MAX, -f32::MAX),
+        ] {
+            let aim = Stroke::new(1.0, TipOffset::CENTRE, [x, y]).unwrap().aim();
+            let (x, y) = (f64::from(x), f64::from(y));
+            let length = x.hypot(y);
+            let (ex, ey) = (x / length, y / length);
+            assert!(
+                (f64::from(aim.x) - ex).abs() <= 2e-7 && (f64::from(aim.y) - ey).abs() <= 2e-7,
+                "[{x:e}, {y:e}] -> {aim:?}"
+            );
+        }
+        for (x, y) in [(0.0f32, 0.0f32), (-0.0, 0.0)] {
+            assert_eq!(
+                Stroke::new(1.0, TipOffset::CENTRE, [x, y]),
+                Err(Error::OutOfRange {
+                    field: Field::Aim,
+                    value: 0.0
+                })
+            );
+        }
+        for (x, y) in [(f32::NAN, 1.0f32), (1.0, f32::INFINITY)] {
+            assert_eq!(
+                Stroke::new(1.0, TipOffset::CENTRE, [x, y]),
+                Err(Error::NotFinite { field: Field::Aim })
+            );
+        }
     }
 
     /// A cue ball that stops exactly touching a ball arrived with zero speed, and `play`
