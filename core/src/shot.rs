@@ -157,7 +157,8 @@ where
     let side = Vec3::new(-aim.y, aim.x, 0.0); // ẑ × aim
     let travel = launch.velocity();
     let travel_spin = launch.spin;
-    let cue_start = scene.balls()[0];
+    // A scene always holds its cue ball; `get` keeps the image free of a bounds panic.
+    let cue_start = scene.balls().first().copied().unwrap_or(Vec3::ZERO);
     let velocity = aim * travel.x;
     let spin = aim * travel_spin.x + side * travel_spin.y + Vec3::new(0.0, 0.0, travel_spin.z);
     let cue_before = Motion::new(cue_start, velocity, spin, radius, &setup.cloth);
@@ -209,7 +210,10 @@ where
 {
     let radius = scene.radius();
     let cue_position = cue_before.position_at(time);
-    let object_position = scene.balls()[index];
+    let object_position = scene.balls().get(index).copied().ok_or(Error::OutOfRange {
+        field: Field::BallIndex,
+        value: index as f32,
+    })?;
     let centres = object_position - cue_position;
     let centres = centres * (1.0 / centres.length());
     let across = Vec3::new(-centres.y, centres.x, 0.0); // collision-frame y = ẑ × x
