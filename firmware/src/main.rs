@@ -22,9 +22,9 @@ use static_cell::{ConstStaticCell, StaticCell};
 /// Firmware name and version, as `version` reports them.
 const FIRMWARE: &str = concat!(env!("CARGO_PKG_NAME"), " ", env!("CARGO_PKG_VERSION"));
 
-/// The session (48 KB of stroke samples), in `.bss`: built in place by `init_with`, so
+/// The session (10 KB of stroke samples), in `.bss`: built in place by `init_with`, so
 /// it never passes through the stack. (A `ConstStaticCell` would put it in `.data`, and
-/// its 48 KB initial image in flash.)
+/// its 10 KB initial image in flash.)
 static SESSION: StaticCell<Session> = StaticCell::new();
 /// The request line buffer ([`MAX_LINE`] bytes, all zero: `.bss`).
 static LINES: ConstStaticCell<LineReader<MAX_LINE>> = ConstStaticCell::new(LineReader::new());

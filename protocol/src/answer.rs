@@ -14,6 +14,7 @@ use serde::{Deserialize, Serialize};
 use crate::names::{ModelName, RegimeName};
 use crate::problem::{ErrorKind, Message, Name};
 use crate::request::{law_components, Defaults};
+#[cfg(feature = "shot")]
 use crate::shot::ShotAnswer;
 
 /// One answer line.
@@ -32,6 +33,7 @@ pub enum Answer {
     StrokeChunk(StrokeChunkAnswer),
     /// To `shot`: the guidance. Serialized only: a host reads it as plain JSON (its
     /// keys are those of `cuesight shot --json`).
+    #[cfg(feature = "shot")]
     #[serde(skip_deserializing)]
     Shot(ShotAnswer),
     /// To `version`.

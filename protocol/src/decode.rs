@@ -18,6 +18,7 @@ use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visit
 use crate::names::ModelName;
 use crate::problem::{Name, NotARequest, Problem};
 use crate::request::{Collide, Overrides, Request, Spin, Stroke};
+#[cfg(feature = "shot")]
 use crate::shot::{Shot, TableName, MAX_OBJECT_BALLS};
 use crate::{json, MAX_SAMPLES};
 
@@ -106,10 +107,15 @@ const OBJECT: &str = "an object of the request's fields";
 const EMPTY: &str = "an empty object {}";
 const SAMPLES: &str = "an array of raw samples, integers in -32768..=32767";
 const TIP: &str = "[side, height], two numbers (m)";
+#[cfg(feature = "shot")]
 const POINT: &str = "[x, y], two numbers (m)";
+#[cfg(feature = "shot")]
 const BALLS: &str = "an array of [x, y] ball centres (m)";
+#[cfg(feature = "shot")]
 const TABLE: &str = "a table name (a string)";
+#[cfg(feature = "shot")]
 const INDEX: &str = "a non-negative integer";
+#[cfg(feature = "shot")]
 const TIP_RADII: &str = "[side, height], two numbers (ball radii)";
 
 struct RequestSeed<'d> {
@@ -136,21 +142,29 @@ impl<'de> Visitor<'de> for RequestSeed<'_> {
         let Some(tag) = map.next_key::<&str>()? else {
             return Err(diag.fail(Problem::NotARequest(NotARequest::Empty)));
         };
-        let request = match tag {
-            "collide" => Request::Collide(diag.body(&mut map, "collide", OBJECT)?),
-            "params" => Request::Params(diag.body(&mut map, "params", OBJECT)?),
-            "stroke" => Request::Stroke(diag.body(&mut map, "stroke", OBJECT)?),
-            "shot" => Request::Shot(diag.body(&mut map, "shot", OBJECT)?),
-            "version" => {
-                diag.body::<_, ()>(&mut map, "version", EMPTY)?;
-                Request::Version
-            }
-            "shutdown" => {
-                diag.body::<_, ()>(&mut map, "shutdown", EMPTY)?;
-                Request::Shutdown
-            }
-            other => return Err(diag.fail(Problem::UnknownRequest(Name::of(other)))),
-        };
+        let request =
+            match tag {
+                "collide" => Request::Collide(diag.body(&mut map, "collide", OBJECT)?),
+                "params" => Request::Params(diag.body(&mut map, "params", OBJECT)?),
+                "stroke" => Request::Stroke(diag.body(&mut map, "stroke", OBJECT)?),
+                #[cfg(feature = "shot")]
+                "shot" => Request::Shot(diag.body(&mut map, "shot", OBJECT)?),
+                #[cfg(not(feature = "shot"))]
+                "shot" => return Err(diag.fail(Problem::Unsupported {
+                    field: "shot",
+                    reason:
+                        "this firmware image has no shot guidance (build it with --features shot)",
+                })),
+                "version" => {
+                    diag.body::<_, ()>(&mut map, "version", EMPTY)?;
+                    Request::Version
+                }
+                "shutdown" => {
+                    diag.body::<_, ()>(&mut map, "shutdown", EMPTY)?;
+                    Request::Shutdown
+                }
+                other => return Err(diag.fail(Problem::UnknownRequest(Name::of(other)))),
+            };
         if map.next_key::<&str>()?.is_some() {
             return Err(diag.fail(Problem::NotARequest(NotARequest::SeveralKeys)));
         }
@@ -210,6 +224,7 @@ fn unknown<E: de::Error>(diag: &mut Diag, request: &'static str, field: &str) ->
             "collide" => Collide::EXPECTED,
             "params" => Overrides::EXPECTED,
             "stroke" => Stroke::EXPECTED,
+            #[cfg(feature = "shot")]
             "shot" => Shot::EXPECTED,
             _ => "no fields",
         },
@@ -389,6 +404,7 @@ impl Body for Stroke {
     }
 }
 
+#[cfg(feature = "shot")]
 impl Body for Shot {
     const NAME: &'static str = "shot";
     const EXPECTED: &'static str = "table, cue, balls, speed, tip, aim, object, pocket, mu_cloth, \
@@ -473,11 +489,13 @@ impl Body for Shot {
 }
 
 /// The `balls` array of a `shot`, into a fixed-capacity vector (`out`, in place).
+#[cfg(feature = "shot")]
 struct BallsSeed<'d> {
     diag: &'d mut Diag,
     out: &'d mut Vec<[f32; 2], MAX_OBJECT_BALLS>,
 }
 
+#[cfg(feature = "shot")]
 impl<'de> DeserializeSeed<'de> for BallsSeed<'_> {
     type Value = ();
 
@@ -486,6 +504,7 @@ impl<'de> DeserializeSeed<'de> for BallsSeed<'_> {
     }
 }
 
+#[cfg(feature = "shot")]
 impl<'de> Visitor<'de> for BallsSeed<'_> {
     type Value = ();
 

@@ -127,6 +127,7 @@ impl fmt::Display for Summary<'_> {
                 "stroke samples held: {} of {}",
                 c.samples, c.capacity
             ),
+            #[cfg(feature = "shot")]
             Answer::Shot(s) => {
                 let g = &s.guidance;
                 match &g.solve {

@@ -38,6 +38,7 @@ mod names;
 mod problem;
 pub mod request;
 mod session;
+#[cfg(feature = "shot")]
 pub mod shot;
 
 pub use answer::{Answer, CollideAnswer, ErrorAnswer, InputEcho, StrokeAnswer, StrokeChunkAnswer};
@@ -48,6 +49,7 @@ pub use names::{ModelName, RegimeName};
 pub use problem::{ErrorKind, Message, Name, NotARequest, Problem, MESSAGE_LEN, NAME_LEN};
 pub use request::{Collide, Defaults, Overrides, Request, Spin, Stroke};
 pub use session::{AnswerLine, Control, Identity, Served, Session};
+#[cfg(feature = "shot")]
 pub use shot::{Shot, ShotAnswer, TableName};
 
 /// Protocol version, reported by `version`. Bumped on any incompatible change of a
@@ -69,6 +71,9 @@ pub const MAX_ANSWER: usize = 2560;
 /// grows with it (1,024 took it past 30 KB; the stack budget is 8 KB).
 pub const MAX_SAMPLES: usize = 256;
 
-/// Most samples in one stroke, all chunks: 3.6 s at the LSM6DSOX's 6.66 kHz, the window
-/// `cuesight-sensors` is tested with (48 KB of `i16`, held by the [`Session`]).
-pub const STROKE_CAPACITY: usize = 24_000;
+/// Most samples in one stroke, all chunks: 1.5 s at the LSM6DSOX's 3.33 kHz, the rate
+/// the device captures strokes at (0.75 s at 6.66 kHz). 10 KB of `i16`, held by the
+/// [`Session`]: sized so the firmware's static RAM stays within its 16 KiB budget
+/// (issue 6) next to the line and answer buffers. The estimator reaches 0.95 % at
+/// 3.33 kHz (`docs/sensors.md`).
+pub const STROKE_CAPACITY: usize = 5_000;

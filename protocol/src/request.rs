@@ -12,6 +12,7 @@ use serde::ser::{Serialize, SerializeStruct, Serializer};
 
 use crate::answer::InputEcho;
 use crate::names::ModelName;
+#[cfg(feature = "shot")]
 use crate::shot::Shot;
 use crate::MAX_SAMPLES;
 
@@ -28,6 +29,7 @@ pub enum Request {
     /// Estimate a stroke from raw accelerometer samples.
     Stroke(Stroke),
     /// Shot guidance: aim, throw correction, both balls' paths (`cuesight shot`).
+    #[cfg(feature = "shot")]
     Shot(Shot),
     /// Protocol and firmware versions, buffer limits.
     Version,
@@ -37,8 +39,13 @@ pub enum Request {
 
 impl Request {
     /// Every request name, as on the wire.
-    pub const NAMES: [&'static str; 6] =
-        ["collide", "params", "stroke", "shot", "version", "shutdown"];
+    #[cfg(feature = "shot")]
+    pub const NAMES: &'static [&'static str] =
+        &["collide", "params", "stroke", "shot", "version", "shutdown"];
+    /// Every request name, as on the wire.
+    #[cfg(not(feature = "shot"))]
+    pub const NAMES: &'static [&'static str] =
+        &["collide", "params", "stroke", "version", "shutdown"];
 
     /// The request's wire name.
     pub const fn name(&self) -> &'static str {
@@ -46,6 +53,7 @@ impl Request {
             Request::Collide(_) => "collide",
             Request::Params(_) => "params",
             Request::Stroke(_) => "stroke",
+            #[cfg(feature = "shot")]
             Request::Shot(_) => "shot",
             Request::Version => "version",
             Request::Shutdown => "shutdown",
@@ -354,6 +362,7 @@ impl Serialize for Request {
             }
             Request::Params(body) => serializer.serialize_newtype_variant("Request", 1, name, body),
             Request::Stroke(body) => serializer.serialize_newtype_variant("Request", 2, name, body),
+            #[cfg(feature = "shot")]
             Request::Shot(body) => serializer.serialize_newtype_variant("Request", 3, name, body),
             Request::Version => serializer.serialize_newtype_variant("Request", 4, name, &Empty),
             Request::Shutdown => serializer.serialize_newtype_variant("Request", 5, name, &Empty),

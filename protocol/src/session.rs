@@ -3,6 +3,7 @@
 //! few lines and everything here is tested on the host.
 
 use cuesight::collide;
+#[cfg(feature = "shot")]
 use cuesight::guidance::guide;
 use cuesight::strike::{Cue, TipOffset};
 use cuesight_sensors::{estimate_raw, StrokeConfig, StrokeError, ACCEL_MPS2_PER_LSB};
@@ -17,6 +18,7 @@ use crate::line::Event;
 use crate::names::ModelName;
 use crate::problem::{ErrorKind, Message, Name, Problem};
 use crate::request::{Collide, Defaults, Overrides, Request, Stroke};
+#[cfg(feature = "shot")]
 use crate::shot::{Shot, ShotAnswer};
 use crate::{MAX_ANSWER, MAX_LINE, MAX_SAMPLES, PROTOCOL_VERSION, STROKE_CAPACITY};
 
@@ -55,7 +57,7 @@ pub struct Served {
 }
 
 /// One session: the defaults set by `params`, the samples of a `stroke` sent in chunks
-/// (48 KB: keep the session in a static or on a large stack), and the counters
+/// (10 KB: keep the session in a static or on a large stack), and the counters
 /// `shutdown` reports.
 #[derive(Clone, Debug)]
 pub struct Session {
@@ -152,6 +154,7 @@ impl Session {
             Request::Collide(collide) => Answer::Collide(self.collide(collide)?),
             Request::Params(overrides) => Answer::Params(self.set_params(overrides)?),
             Request::Stroke(stroke) => self.stroke(stroke)?,
+            #[cfg(feature = "shot")]
             Request::Shot(shot) => Answer::Shot(self.shot(shot)?),
             Request::Version => Answer::Version(self.version()),
             Request::Shutdown => {
@@ -172,6 +175,7 @@ impl Session {
         Ok(CollideAnswer::new(prepared.model, prepared.input, &outcome))
     }
 
+    #[cfg(feature = "shot")]
     fn shot(&self, request: &Shot) -> Result<ShotAnswer, Problem> {
         let prepared = request.prepare(&self.defaults)?;
         let speed = request.speed;

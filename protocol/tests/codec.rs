@@ -637,7 +637,7 @@ fn fuzzed_lines_always_get_one_parseable_answer() {
     let _ = Problem::MissingField("x"); // the type is public for hosts that match on it
 }
 
-/// A clean synthetic stroke in raw words (LSM6DSOX ±16 g scale): 0.5 s at rest, a
+/// A clean synthetic stroke in raw words (LSM6DSOX ±16 g scale): 0.25 s at rest, a
 /// half-sine acceleration to `speed` over 0.3 s, a 20 g impact (clipped at full scale),
 /// 20 ms after it.
 fn clean_stroke(rate_hz: f32, speed: f32) -> Vec<i16> {
@@ -647,7 +647,7 @@ fn clean_stroke(rate_hz: f32, speed: f32) -> Vec<i16> {
     let (duration, steps) = (0.3, n(0.3));
     // a = A sin(π t / T) reaches v = 2 A T / π at t = T.
     let peak = std::f32::consts::PI * speed / (2.0 * duration);
-    let mut samples = vec![bias; n(0.5)];
+    let mut samples = vec![bias; n(0.25)];
     samples.extend((0..steps).map(|i| {
         let t = (i as f32 + 0.5) / rate_hz;
         let a = peak * (std::f32::consts::PI * t / duration).sin();

@@ -68,7 +68,7 @@ const STEPS: &[Step] = &[
         action: qemu::build_release,
     },
     Step {
-        title: "firmware: release image size, flash within 64 KiB",
+        title: "firmware: release image size, flash within 64 KiB and static RAM within 16 KiB",
         action: || size::check_budgets(&qemu::elf_path()),
     },
     Step {
