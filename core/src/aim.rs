@@ -125,14 +125,29 @@ where
     let (cue, ball) = (balls[0], balls[object]);
     let centre = target.centre();
     let radius = scene.radius();
-    let to_pocket = centre - ball;
-    let direction = to_pocket * (1.0 / to_pocket.length());
-    let naive_ghost = ball - direction * (2.0 * radius);
-    let naive_vector = naive_ghost - cue;
-    let naive_angle = math::atan2(naive_vector.y, naive_vector.x);
     // Mouth line: through the pocket centre along its segment.
     let along = target.b - target.a;
     let along = along * (1.0 / along.length());
+    let to_pocket = centre - ball;
+    let distance = to_pocket.length();
+    let direction = if distance > 0.0 {
+        to_pocket * (1.0 / distance)
+    } else {
+        // The ball sits on the pocket centre: send it straight through the mouth, away
+        // from the middle of the table (the direction was 0/0, and the solve failed
+        // with a non-finite aim).
+        let normal = Vec3::new(-along.y, along.x, 0.0);
+        let table = scene.table();
+        let middle = Vec3::new(0.5 * table.length(), 0.5 * table.width(), 0.0);
+        if normal.dot(centre - middle) < 0.0 {
+            normal * -1.0
+        } else {
+            normal
+        }
+    };
+    let naive_ghost = ball - direction * (2.0 * radius);
+    let naive_vector = naive_ghost - cue;
+    let naive_angle = math::atan2(naive_vector.y, naive_vector.x);
     let (far_a, far_b) = (centre - along * 20.0, centre + along * 20.0);
 
     let mut miss = |angle: f32| -> core::result::Result<(f32, Vec3, f32), AimError> {
@@ -218,4 +233,47 @@ fn naive_cut_angle(cue: Vec3, ghost: Vec3, ball: Vec3) -> f32 {
     let centres = ball - ghost;
     let cross = centres.x * aim.y - centres.y * aim.x;
     math::atan2(cross, centres.dot(aim))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::strike::Cue;
+    use crate::table::{BallSet, Table};
+    use crate::travel::Cloth;
+    use crate::Model;
+
+    /// An object ball exactly on a pocket's target centre (a legal position: the
+    /// centre is inside the cushion lines) made the direction to the pocket 0/0 and the
+    /// solve failed with "aim must be a finite number". Now it is solved (the forward
+    /// chain sends the ball through the mouth within the tolerance) or reported as
+    /// unreachable, never as an invalid input.
+    #[test]
+    fn object_ball_on_the_pocket_centre() {
+        for (table, set) in [
+            (Table::pool(), BallSet::POOL),
+            (Table::snooker(), BallSet::SNOOKER),
+        ] {
+            let setup = ShotSetup {
+                params: Params::POOL.with_ball(set.radius, set.mass).unwrap(),
+                cue: Cue::TYPICAL,
+                cloth: Cloth::TYPICAL,
+                model: Model::KimGrip,
+            };
+            let middle = [0.5 * table.length(), 0.5 * table.width()];
+            for (index, pocket) in table.pockets().iter().enumerate() {
+                let c = pocket.centre();
+                let mut scene = Scene::new(table.clone(), set.radius, middle).unwrap();
+                scene.add_ball([c.x, c.y]).unwrap();
+                match solve_aim(&scene, 1, index, 3.0, TipOffset::CENTRE, &setup) {
+                    Ok(solution) => {
+                        assert!(solution.aim.is_finite());
+                        assert!(math::abs(solution.residual) <= TOLERANCE);
+                    }
+                    Err(AimError::Invalid(e)) => panic!("pocket {index}: {e}"),
+                    Err(_) => {}
+                }
+            }
+        }
+    }
 }
