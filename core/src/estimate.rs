@@ -83,7 +83,8 @@ struct Features {
 impl Features {
     fn of(params: &Params, impact: &Impact) -> Self {
         let u = impact.velocity();
-        let speed = crate::math::sqrt(u.x * u.x + u.y * u.y);
+        // U ≥ U_x > 0: the bound keeps the estimates numbers when the squares underflow.
+        let speed = crate::math::max(crate::math::sqrt(u.x * u.x + u.y * u.y), u.x);
         let e = params.restitution();
         let p0 = 0.5 * (1.0 + e) * u.x;
         let (v_y, v_z) = initial_slip::<f32>(params, impact);
@@ -167,5 +168,35 @@ impl Features {
 
     fn exact(&self) -> f32 {
         EXACT_FACTOR * (2.5 * self.impulse + self.table) / self.speed + EXACT_FLOOR
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::FrictionLaw;
+
+    /// Found by the `collide` fuzz target: at a valid speed so small that its square
+    /// underflows (4.8e-35 m/s), `speed` was zero and the estimates 0/0 = NaN.
+    #[test]
+    fn estimates_are_numbers_at_a_speed_whose_square_underflows() {
+        let law = FrictionLaw::speed_dependent(3.9161823e-4, 0.04, 3.3333333).unwrap();
+        let params = Params::new(0.05, 0.94924325, 0.010546875, 0.020527344, 0.21977976)
+            .unwrap()
+            .with_friction_law(law);
+        for velocity in [
+            [3.8954666e-36, -4.7990406e-35],
+            [1e-45, 0.0],
+            [1e-30, 1e-30],
+        ] {
+            let impact =
+                Impact::from_velocity(velocity, [4.814825e-35, -199.98438, -200.0]).unwrap();
+            for model in Model::ALL {
+                let estimate = error_estimate(&params, &impact, model);
+                assert!(estimate >= 0.0, "{model:?} {velocity:?}: {estimate}");
+            }
+            let (_, estimate) = select(&params, &impact, 1e-3);
+            assert!(estimate >= 0.0, "select {velocity:?}: {estimate}");
+        }
     }
 }
