@@ -70,7 +70,8 @@ pub struct Table {
 impl Table {
     /// A table of playing surface `length` × `width` (m, each in `(0, 10]`), with the
     /// usual six pockets of mouth widths `corner_mouth` and `side_mouth` (m; zero for a
-    /// pocketless carom table), for balls of radius `radius`.
+    /// pocketless carom table), for balls of radius `radius` (m, in `[0.001, 1]`, as
+    /// [`Scene::new`] takes it).
     pub fn new(
         length: f32,
         width: f32,
@@ -82,6 +83,8 @@ impl Table {
         let width = check(Field::Table, width, 0.0, length, true)?;
         let corner_mouth = check(Field::Table, corner_mouth, 0.0, 0.5 * width, false)?;
         let side_mouth = check(Field::Table, side_mouth, 0.0, 0.5 * length, false)?;
+        // The pockets' target segments are moved in by the radius.
+        let radius = check(Field::Radius, radius, 0.001, 1.0, false)?;
         let mut pockets = heapless::Vec::new();
         if corner_mouth > 0.0 {
             // Jaws on the two rails at `corner_mouth / √2` from the corner; the segment is
@@ -255,6 +258,36 @@ mod tests {
     extern crate std;
 
     use super::*;
+
+    /// Found by the `shot_scene` fuzz target: `Table::new` did not check the radius, so
+    /// a NaN or infinite one gave a table whose pockets were NaN.
+    #[test]
+    fn a_table_for_an_invalid_radius_is_refused() {
+        for radius in [f32::NAN, f32::INFINITY, -f32::INFINITY] {
+            assert_eq!(
+                Table::new(2.54, 1.27, 0.116, 0.13, radius),
+                Err(Error::NotFinite {
+                    field: Field::Radius
+                })
+            );
+        }
+        for radius in [0.0, -0.03, 1e-4, 1.5] {
+            assert_eq!(
+                Table::new(2.54, 1.27, 0.116, 0.13, radius)
+                    .unwrap_err()
+                    .field(),
+                Some(Field::Radius),
+                "{radius}"
+            );
+        }
+        for radius in [0.001, BallSet::POOL.radius, 1.0] {
+            let table = Table::new(2.54, 1.27, 0.116, 0.13, radius).unwrap();
+            assert!(table
+                .pockets()
+                .iter()
+                .all(|p| p.a.is_finite() && p.b.is_finite()));
+        }
+    }
 
     /// Near a graze the distance to contact is `along − √(4R² − across²)`, evaluated
     /// here in f64 from the same f32 positions: within a few ulp of the table
