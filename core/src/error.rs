@@ -66,6 +66,11 @@ pub enum Field {
     BallCount,
     /// Index of a pocket of the table.
     Pocket,
+    /// A ball's velocity on the table, any component (m/s; `travel::Motion`).
+    Velocity,
+    /// A ball's angular velocity on the table, any component (rad/s;
+    /// `travel::Motion`).
+    Spin,
 }
 
 impl Field {
@@ -96,6 +101,8 @@ impl Field {
             Field::BallIndex => "ball",
             Field::BallCount => "balls",
             Field::Pocket => "pocket",
+            Field::Velocity => "velocity",
+            Field::Spin => "spin",
             Field::CueSpeed => "cue_speed",
             Field::CueMass => "cue_mass",
             Field::TipRestitution => "tip_restitution",
@@ -128,6 +135,8 @@ impl Field {
             Field::BallIndex => "an index of a ball in the scene",
             Field::BallCount => "1..=16 balls",
             Field::Pocket => "an index of a pocket of the table",
+            Field::Velocity => "[-1000, 1000] m/s per component",
+            Field::Spin => "[-1e6, 1e6] rad/s per component",
             Field::CueSpeed => "(0, 20] m/s",
             Field::CueMass => "[0.1, 2] kg",
             Field::TipRestitution => "[0, 1]",

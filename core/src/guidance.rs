@@ -431,6 +431,7 @@ mod tests {
             R,
             &Cloth::TYPICAL,
         )
+        .unwrap()
     }
 
     /// First time the centre is outside the cushion box, by sampling and bisection —

@@ -161,7 +161,7 @@ where
     let cue_start = scene.balls().first().copied().unwrap_or(Vec3::ZERO);
     let velocity = aim * travel.x;
     let spin = aim * travel_spin.x + side * travel_spin.y + Vec3::new(0.0, 0.0, travel_spin.z);
-    let cue_before = Motion::new(cue_start, velocity, spin, radius, &setup.cloth);
+    let cue_before = Motion::new(cue_start, velocity, spin, radius, &setup.cloth)?;
 
     // First ball on the path that the cue ball reaches with some speed towards it. A
     // ball it meets with no approach speed along the line of centres (it arrives at
@@ -232,14 +232,14 @@ where
         to_table(outcome.cue_ball.spin),
         radius,
         &setup.cloth,
-    );
+    )?;
     let object_after = Motion::new(
         object_position,
         to_table(outcome.object_ball.velocity),
         to_table(outcome.object_ball.spin),
         radius,
         &setup.cloth,
-    );
+    )?;
     let mut pocket: Option<(usize, f32)> = None;
     let reach = object_after.bounds();
     for (i, p) in scene.table().pockets().iter().enumerate() {

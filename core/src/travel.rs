@@ -25,6 +25,11 @@ use crate::NU;
 /// Standard gravity (m/s²).
 pub const GRAVITY: f32 = 9.81;
 
+/// Largest velocity component a [`Motion`] accepts (m/s).
+const MAX_VELOCITY: f32 = 1000.0;
+/// Largest spin component a [`Motion`] accepts (rad/s).
+const MAX_SPIN: f32 = 1e6;
+
 /// Smallest accepted cloth sliding friction and rolling resistance ([`Cloth::new`]).
 pub const MIN_CLOTH_FRICTION: f32 = 1e-3;
 
@@ -108,7 +113,34 @@ pub struct Motion {
 impl Motion {
     /// Motion of a ball at `position` with velocity `velocity` (m/s; a positive `z` is a
     /// hop) and spin `spin` (rad/s), radius `radius` (m), on `cloth`.
-    pub fn new(position: Vec3, velocity: Vec3, spin: Vec3, radius: f32, cloth: &Cloth) -> Self {
+    ///
+    /// Errors: a position component not finite or beyond ±1 km ([`Field::Position`]),
+    /// a velocity component beyond ±1000 m/s ([`Field::Velocity`]), a spin component
+    /// beyond ±1e6 rad/s ([`Field::Spin`]; what any collision of the valid domain can
+    /// give, a 1 mm ball included), `radius` outside `[0.001, 1]` m ([`Field::Radius`]).
+    /// Within them every time, velocity and position is finite.
+    pub fn new(
+        position: Vec3,
+        velocity: Vec3,
+        spin: Vec3,
+        radius: f32,
+        cloth: &Cloth,
+    ) -> Result<Self> {
+        for x in [position.x, position.y, position.z] {
+            check(Field::Position, x, -1e3, 1e3, false)?;
+        }
+        for v in [velocity.x, velocity.y, velocity.z] {
+            check(Field::Velocity, v, -MAX_VELOCITY, MAX_VELOCITY, false)?;
+        }
+        for w in [spin.x, spin.y, spin.z] {
+            check(Field::Spin, w, -MAX_SPIN, MAX_SPIN, false)?;
+        }
+        let radius = check(Field::Radius, radius, 0.001, 1.0, false)?;
+        Ok(Self::unchecked(position, velocity, spin, radius, cloth))
+    }
+
+    /// [`Motion::new`] for inputs known to be in range.
+    fn unchecked(position: Vec3, velocity: Vec3, spin: Vec3, radius: f32, cloth: &Cloth) -> Self {
         let air_time = if velocity.z > 0.0 {
             2.0 * velocity.z / GRAVITY
         } else {
@@ -153,10 +185,11 @@ impl Motion {
         }
     }
 
-    /// Spin at time `t` (s): constant in flight; while sliding the cloth friction's
+    /// Spin at time `t` (s; a negative or NaN time is the start): constant in flight; while sliding the cloth friction's
     /// torque `(−R ẑ) × M a` turns it towards natural roll; then natural roll `ẑ × v / R`
     /// (the spin about `z` is kept: its slow decay is not modelled).
     pub fn spin_at(&self, t: f32) -> Vec3 {
+        let t = start_clamped(t);
         let w = self.initial_spin;
         if t <= self.air_time {
             return w;
@@ -256,10 +289,12 @@ impl Motion {
         self.rolling_start() + self.rolling_velocity * (0.5 * self.rolling_time)
     }
 
-    /// Position at time `t` (s) after the start (clamped to the rest position).
+    /// Position at time `t` (s) after the start (clamped to the rest position; a
+    /// negative or NaN time is the start).
     pub fn position_at(&self, t: f32) -> Vec3 {
+        let t = start_clamped(t);
         if t <= self.air_time {
-            return self.start + self.initial_velocity * math::max(t, 0.0);
+            return self.start + self.initial_velocity * t;
         }
         let t = t - self.air_time;
         if t <= self.sliding_time {
@@ -276,8 +311,10 @@ impl Motion {
         self.rolling_start() + self.rolling_velocity * (travelled / speed)
     }
 
-    /// Velocity at time `t` (s) after the start (horizontal).
+    /// Velocity at time `t` (s) after the start (horizontal; a negative or NaN time is
+    /// the start).
     pub fn velocity_at(&self, t: f32) -> Vec3 {
+        let t = start_clamped(t);
         if t <= self.air_time {
             return self.initial_velocity;
         }
@@ -362,6 +399,15 @@ impl Motion {
     }
 }
 
+/// `t` for `t > 0`, else 0 (negative times and NaN are the start).
+fn start_clamped(t: f32) -> f32 {
+    if t > 0.0 {
+        t
+    } else {
+        0.0
+    }
+}
+
 /// An axis-aligned box in the table plane.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -433,7 +479,8 @@ mod tests {
             Vec3::ZERO,
             R,
             &Cloth::TYPICAL,
-        );
+        )
+        .unwrap();
         assert!((m.rolling_velocity.x - 5.0 / 7.0 * v0).abs() < 1e-5);
         let expected = 12.0 * v0 * v0 / (49.0 * 0.2 * GRAVITY); // TP 4.1
         assert!(
@@ -447,7 +494,7 @@ mod tests {
     fn natural_roll_does_not_slide() {
         let v = Vec3::new(1.0, 0.5, 0.0);
         let spin = Vec3::new(-0.5 / R, 1.0 / R, 0.0);
-        let m = Motion::new(Vec3::ZERO, v, spin, R, &Cloth::TYPICAL);
+        let m = Motion::new(Vec3::ZERO, v, spin, R, &Cloth::TYPICAL).unwrap();
         assert!(m.sliding_time < 1e-6);
         assert!((m.rest() - v * (v.length() / (2.0 * 0.01 * GRAVITY))).length() < 1e-4);
     }
@@ -469,7 +516,8 @@ mod tests {
                         Vec3::new(0.0, draw * speed / radius, 0.0),
                         radius,
                         &Cloth::TYPICAL,
-                    );
+                    )
+                    .unwrap();
                     let dir = Vec3::new(1.0, 0.0, 0.0);
                     let switch = m.rolling_start().x - m.start.x;
                     let mut d = switch;
@@ -530,7 +578,8 @@ mod tests {
             Vec3::new(1e4, -1e4, 1e4),
             1.0,
             &least,
-        );
+        )
+        .unwrap();
         for v in [
             m.rolling_velocity,
             m.rolling_start(),
@@ -542,6 +591,56 @@ mod tests {
         assert!(m.stop_time().is_finite(), "{m:?}");
     }
 
+    /// `Motion::new` took any state: a NaN or infinite position, velocity, spin or
+    /// radius (or a radius of zero) gave NaN times and positions, and a NaN time gave
+    /// a NaN position. Now the state is validated, field by field, and a NaN or
+    /// negative time is the start.
+    #[test]
+    fn motion_state_is_validated() {
+        use crate::error::Error;
+        let (p, v, w) = (
+            Vec3::new(1.0, 0.5, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::ZERO,
+        );
+        let new = |p: Vec3, v: Vec3, w: Vec3, r: f32| Motion::new(p, v, w, r, &Cloth::TYPICAL);
+        let nan = f32::NAN;
+        let not_finite = |field| Err(Error::NotFinite { field });
+        assert_eq!(
+            new(Vec3::new(nan, 0.5, 0.0), v, w, R),
+            not_finite(Field::Position)
+        );
+        assert_eq!(
+            new(p, Vec3::new(1.0, f32::INFINITY, 0.0), w, R),
+            not_finite(Field::Velocity)
+        );
+        assert_eq!(
+            new(p, v, Vec3::new(0.0, 0.0, nan), R),
+            not_finite(Field::Spin)
+        );
+        assert_eq!(new(p, v, w, nan), not_finite(Field::Radius));
+        let out = |field, value| Err(Error::OutOfRange { field, value });
+        assert_eq!(new(p, v, w, 0.0), out(Field::Radius, 0.0));
+        assert_eq!(
+            new(p, Vec3::new(-1e30, 0.0, 0.0), w, R),
+            out(Field::Velocity, -1e30)
+        );
+        assert_eq!(
+            new(p, v, Vec3::new(2e6, 0.0, 0.0), R),
+            out(Field::Spin, 2e6)
+        );
+        assert_eq!(
+            new(Vec3::new(1.0, 5e3, 0.0), v, w, R),
+            out(Field::Position, 5e3)
+        );
+        let m = new(p, Vec3::new(1.0, 0.2, 0.3), Vec3::new(0.0, -9.0, 4.0), R).unwrap();
+        for t in [nan, -1.0, f32::NEG_INFINITY] {
+            assert_eq!(m.position_at(t), m.start);
+            assert_eq!(m.velocity_at(t), m.initial_velocity);
+            assert_eq!(m.spin_at(t), m.initial_spin);
+        }
+    }
+
     #[test]
     fn crossing_finds_a_segment_ahead_and_ignores_one_behind() {
         let m = Motion::new(
@@ -550,7 +649,8 @@ mod tests {
             Vec3::ZERO,
             R,
             &Cloth::TYPICAL,
-        );
+        )
+        .unwrap();
         let t = m
             .crossing(Vec3::new(1.0, -0.1, 0.0), Vec3::new(1.0, 0.1, 0.0))
             .unwrap();

@@ -83,14 +83,16 @@ fn ninety_degree_rule() {
             out.cue_ball.spin,
             R,
             &Cloth::TYPICAL,
-        );
+        )
+        .unwrap();
         let object = Motion::new(
             Vec3::ZERO,
             out.object_ball.velocity,
             out.object_ball.spin,
             R,
             &Cloth::TYPICAL,
-        );
+        )
+        .unwrap();
         let separation = angle_between(object.rolling_velocity, cue.rolling_velocity).abs();
         assert!((separation - 90.0).abs() < 1e-3, "cut {cut}: {separation}");
         assert!(angle_between(cue.initial_velocity, cue.rolling_velocity).abs() < 1e-3);
