@@ -7,6 +7,7 @@ pub mod grid;
 pub mod reference;
 pub mod report;
 pub mod shot_cli;
+pub mod shot_scenes;
 pub mod strokes;
 pub mod svg;
 pub mod timed;

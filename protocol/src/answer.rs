@@ -14,13 +14,10 @@ use serde::{Deserialize, Serialize};
 use crate::names::{ModelName, RegimeName};
 use crate::problem::{ErrorKind, Message, Name};
 use crate::request::{law_components, Defaults};
-#[cfg(feature = "shot")]
-use crate::shot::ShotAnswer;
 
-/// One answer line.
+/// One answer line. (`shot`'s answer, [`crate::ShotAnswer`], is written on its own: a
+/// host reads it as plain JSON, with the keys of `cuesight shot --json`.)
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-// No heap to box into: an answer is built on the stack and serialized at once.
-#[allow(clippy::large_enum_variant)]
 #[serde(rename_all = "snake_case")]
 pub enum Answer {
     /// To `collide`.
@@ -31,11 +28,6 @@ pub enum Answer {
     Stroke(StrokeAnswer),
     /// To a `stroke` chunk with `"more":true`: the samples held so far.
     StrokeChunk(StrokeChunkAnswer),
-    /// To `shot`: the guidance. Serialized only: a host reads it as plain JSON (its
-    /// keys are those of `cuesight shot --json`).
-    #[cfg(feature = "shot")]
-    #[serde(skip_deserializing)]
-    Shot(ShotAnswer),
     /// To `version`.
     Version(VersionAnswer),
     /// To `shutdown`, just before the firmware exits.

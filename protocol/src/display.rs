@@ -127,34 +127,6 @@ impl fmt::Display for Summary<'_> {
                 "stroke samples held: {} of {}",
                 c.samples, c.capacity
             ),
-            #[cfg(feature = "shot")]
-            Answer::Shot(s) => {
-                let g = &s.guidance;
-                match &g.solve {
-                    Some(solve) => write!(
-                        f,
-                        "aim {:.2} deg ({:+.2} deg, {:.1} mm {} than the ghost ball)",
-                        solve.aim_deg,
-                        solve.solution.correction_deg,
-                        solve.solution.correction_mm,
-                        if solve.solution.thinner { "thinner" } else { "thicker" }
-                    )?,
-                    None => write!(f, "aim {:.2} deg", g.stroke.aim_deg)?,
-                }
-                match &g.contact {
-                    Some(c) => write!(
-                        f,
-                        "; hits ball {} at a {:.1} deg cut, throw {:.2} deg",
-                        c.ball, c.cut_deg, c.throw_deg
-                    )?,
-                    None => f.write_str("; hits nothing")?,
-                }
-                if let Some(t) = &g.target {
-                    let verdict = if t.pocketed { "pocketed" } else { "missed" };
-                    write!(f, "; ball {} {verdict}", t.target.object)?;
-                }
-                Ok(())
-            }
             Answer::Version(v) => write!(
                 f,
                 "protocol {}, {} on {}; lines up to {} bytes, strokes up to {} samples in chunks of {}",

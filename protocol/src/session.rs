@@ -108,21 +108,18 @@ impl Session {
         }
         self.requests = self.requests.saturating_add(1);
         let result = match event {
-            Event::Line(line) => decode(line).and_then(|request| self.answer(&request)),
+            Event::Line(line) => decode(line).and_then(|request| self.answer(&request, out)),
             Event::Overlong { length } => Err(Problem::LineTooLong {
                 length,
                 limit: MAX_LINE,
             }),
         };
         let served = match result {
-            Ok((answer, name, control)) => {
-                write_answer(&answer, out);
-                Served {
-                    request: Some(name),
-                    error: None,
-                    control,
-                }
-            }
+            Ok((name, control)) => Served {
+                request: Some(name),
+                error: None,
+                control,
+            },
             Err(problem) => {
                 self.errors = self.errors.saturating_add(1);
                 // The line may have been a chunk of the stroke in progress: drop it
@@ -148,24 +145,34 @@ impl Session {
         self.serve(Event::Line(line), out)
     }
 
-    fn answer(&mut self, request: &Request) -> Result<(Answer, &'static str, Control), Problem> {
+    /// Answers a decoded request into `out`.
+    fn answer(
+        &mut self,
+        request: &Request,
+        out: &mut AnswerLine,
+    ) -> Result<(&'static str, Control), Problem> {
         let name = request.name();
         let answer = match request {
             Request::Collide(collide) => Answer::Collide(self.collide(collide)?),
             Request::Params(overrides) => Answer::Params(self.set_params(overrides)?),
             Request::Stroke(stroke) => self.stroke(stroke)?,
             #[cfg(feature = "shot")]
-            Request::Shot(shot) => Answer::Shot(self.shot(shot)?),
+            Request::Shot(shot) => {
+                self.shot(shot, out)?;
+                return Ok((name, Control::Continue));
+            }
             Request::Version => Answer::Version(self.version()),
             Request::Shutdown => {
                 let answer = Answer::Shutdown(ShutdownAnswer {
                     requests: self.requests,
                     errors: self.errors,
                 });
-                return Ok((answer, name, Control::Shutdown));
+                write_answer(&answer, out);
+                return Ok((name, Control::Shutdown));
             }
         };
-        Ok((answer, name, Control::Continue))
+        write_answer(&answer, out);
+        Ok((name, Control::Continue))
     }
 
     fn collide(&self, request: &Collide) -> Result<CollideAnswer, Problem> {
@@ -175,8 +182,10 @@ impl Session {
         Ok(CollideAnswer::new(prepared.model, prepared.input, &outcome))
     }
 
+    /// `shot`, answered into `out` here rather than through [`Answer`], which stays
+    /// small (the firmware's peak stack is the budget).
     #[cfg(feature = "shot")]
-    fn shot(&self, request: &Shot) -> Result<ShotAnswer, Problem> {
+    fn shot(&self, request: &Shot, out: &mut AnswerLine) -> Result<(), Problem> {
         let prepared = request.prepare(&self.defaults)?;
         let speed = request.speed;
         let guidance = guide(
@@ -186,11 +195,13 @@ impl Session {
             prepared.aim,
             &prepared.setup,
         )?;
-        Ok(ShotAnswer {
+        let answer = ShotAnswer {
             tip: request.tip,
             model: prepared.model,
             guidance,
-        })
+        };
+        write_answer(&Tagged("shot", &answer), out);
+        Ok(())
     }
 
     fn set_params(&mut self, overrides: &Overrides) -> Result<ParamsAnswer, Problem> {
@@ -265,6 +276,17 @@ impl Session {
     }
 }
 
+/// `{"<name>": value}`, as [`Answer`]'s variants serialize.
+#[cfg(feature = "shot")]
+struct Tagged<'a, T>(&'static str, &'a T);
+
+#[cfg(feature = "shot")]
+impl<T: serde::Serialize> serde::Serialize for Tagged<'_, T> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_newtype_variant("Answer", 0, self.0, self.1)
+    }
+}
+
 /// The core model for `name`; `reference` is host-only.
 fn core_model(name: ModelName) -> Result<cuesight::Model, Problem> {
     name.core().ok_or(Problem::Unsupported {
@@ -275,7 +297,7 @@ fn core_model(name: ModelName) -> Result<cuesight::Model, Problem> {
 
 /// Serializes `answer` and its newline into `out`; if it does not fit (never, by the
 /// size tests), an `internal` error line instead.
-fn write_answer(answer: &Answer, out: &mut AnswerLine) {
+fn write_answer<T: serde::Serialize>(answer: &T, out: &mut AnswerLine) {
     out.clear();
     // Cannot fail: resizing up to the capacity.
     let _ = out.resize_default(MAX_ANSWER);

@@ -88,13 +88,17 @@ const STEPS: &[Step] = &[
         action: end_to_end,
     },
     Step {
+        title: "firmware with the shot request (--features shot): size, end-to-end shot test in QEMU",
+        action: shot_image,
+    },
+    Step {
         title: "bench-firmware: fmt, clippy, KimGrip f32 disassembly (vsqrt.f32, no soft f64), instruction count within 5 % of the baseline",
         action: crate::bench::check,
     },
 ];
 
 /// The link-time no-panic proof: the shipped configuration (release profile: opt-level
-/// "s", fat LTO, one codegen unit; default board) whose panic handler calls a symbol
+/// "z" with the physics at "s", fat LTO, one codegen unit; default board) whose panic handler calls a symbol
 /// defined nowhere, in its own target directory so the release ELF the QEMU steps run
 /// is left alone.
 fn panic_never() -> Result {
@@ -183,6 +187,36 @@ fn end_to_end() -> Result {
     test.args(["test", "-p", "cuesight-host", "--test", "e2e", "--"])
         .args(["--ignored", "--nocapture"])
         .env("CUESIGHT_FIRMWARE_ELF", qemu::elf_path())
+        .env("DEFMT_PRINT", defmt_print);
+    cmd::run_with_timeout(&mut test, Duration::from_secs(600))
+}
+
+/// The image with the protocol's `shot` request (`--features shot`, its own target
+/// directory): built, its size reported against the budgets (it is over the flash
+/// budget, which is why the default image leaves it out), and `host-tests/tests/
+/// e2e_shot.rs` run against it under QEMU.
+fn shot_image() -> Result {
+    let target_dir = "target/shot";
+    cargo_in_firmware(&[
+        "build",
+        "--release",
+        "--features",
+        "shot",
+        "--target-dir",
+        target_dir,
+    ])?;
+    let elf = cmd::firmware_dir()
+        .join(target_dir)
+        .join(tools::TARGET)
+        .join("release")
+        .join("cuesight-firmware");
+    size::report(&elf)?;
+    tools::ensure_qemu()?;
+    let defmt_print = tools::defmt_print()?;
+    let mut test = cmd::cargo();
+    test.args(["test", "-p", "cuesight-host", "--test", "e2e_shot", "--"])
+        .args(["--ignored", "--nocapture"])
+        .env("CUESIGHT_FIRMWARE_ELF", &elf)
         .env("DEFMT_PRINT", defmt_print);
     cmd::run_with_timeout(&mut test, Duration::from_secs(600))
 }
