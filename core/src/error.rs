@@ -71,6 +71,8 @@ pub enum Field {
     /// A ball's angular velocity on the table, any component (rad/s;
     /// `travel::Motion`).
     Spin,
+    /// Distance between two ball centres in a scene (m): at least `2R`.
+    Spacing,
 }
 
 impl Field {
@@ -103,6 +105,7 @@ impl Field {
             Field::Pocket => "pocket",
             Field::Velocity => "velocity",
             Field::Spin => "spin",
+            Field::Spacing => "spacing",
             Field::CueSpeed => "cue_speed",
             Field::CueMass => "cue_mass",
             Field::TipRestitution => "tip_restitution",
@@ -129,14 +132,17 @@ impl Field {
             Field::CueTableFriction => "[0, 1]",
             Field::ClothFriction => "[0.001, 1]",
             Field::RollingResistance => "[0.001, 0.5]",
-            Field::Position => "on the table, not overlapping another ball",
-            Field::Table => "(0, 10] m, pockets on the table",
+            Field::Position => "the playing surface: [R, length - R] x [R, width - R] m",
+            Field::Table => {
+                "length (0, 10] m, width (0, length], corner mouth [0, width/2], side mouth [0, length/2]"
+            }
             Field::Aim => "a non-zero finite direction",
-            Field::BallIndex => "an index of a ball in the scene",
+            Field::BallIndex => "an object-ball index: 1 to the number of balls - 1",
             Field::BallCount => "1..=16 balls",
             Field::Pocket => "an index of a pocket of the table",
             Field::Velocity => "[-1000, 1000] m/s per component",
             Field::Spin => "[-1e6, 1e6] rad/s per component",
+            Field::Spacing => "centre distances of at least 2R (balls may touch)",
             Field::CueSpeed => "(0, 20] m/s",
             Field::CueMass => "[0.1, 2] kg",
             Field::TipRestitution => "[0, 1]",

@@ -192,23 +192,29 @@ impl Scene {
         Ok(scene)
     }
 
-    /// Place another ball; returns its index. Errors: off the table or overlapping a
-    /// ball ([`Field::Position`]), or more than [`MAX_BALLS`] ([`Field::BallCount`]).
+    /// Place another ball; returns its index. Errors: a coordinate not finite or off the
+    /// playing surface ([`Field::Position`], the coordinate), overlapping a ball
+    /// ([`Field::Spacing`], the centre distance; touching is allowed), or more than
+    /// [`MAX_BALLS`] ([`Field::BallCount`]).
     pub fn add_ball(&mut self, position: [f32; 2]) -> Result<usize> {
         let x = check(Field::Position, position[0], -1e3, 1e3, false)?;
         let y = check(Field::Position, position[1], -1e3, 1e3, false)?;
         let p = Vec3::new(x, y, 0.0);
         if !self.table.contains(p, self.radius) {
+            // Name the coordinate that is off the playing surface.
+            let r = self.radius;
+            let x_on = x >= r && x <= self.table.length - r;
             return Err(Error::OutOfRange {
                 field: Field::Position,
-                value: x,
+                value: if x_on { y } else { x },
             });
         }
         for other in &self.balls {
-            if (*other - p).length() < 2.0 * self.radius * (1.0 - 1e-6) {
+            let distance = (*other - p).length();
+            if distance < 2.0 * self.radius * (1.0 - 1e-6) {
                 return Err(Error::OutOfRange {
-                    field: Field::Position,
-                    value: x,
+                    field: Field::Spacing,
+                    value: distance,
                 });
             }
         }
@@ -293,6 +299,39 @@ mod tests {
     /// here in f64 from the same f32 positions: within a few ulp of the table
     /// coordinates, where `reach² − across²` in f32 had cancelled (carom ball one 2⁻²³ m
     /// step inside tangency: 0.6 µm off).
+    /// A ball off the table reported its x coordinate even when y was the one off, and
+    /// an overlapping ball was reported as a position with its x coordinate: the
+    /// message did not say what was wrong. Now the coordinate off the surface, or the
+    /// centre distance of the overlap (`Field::Spacing`), is named.
+    #[test]
+    fn placement_errors_name_what_is_wrong() {
+        use std::string::ToString;
+        let r = BallSet::POOL.radius;
+        let mut scene = Scene::new(Table::pool(), r, [0.5, 0.6]).unwrap();
+        let off = |value| {
+            Err(Error::OutOfRange {
+                field: Field::Position,
+                value,
+            })
+        };
+        assert_eq!(scene.add_ball([1.0, 1.26]), off(1.26));
+        assert_eq!(scene.add_ball([0.01, 0.6]), off(0.01));
+        assert_eq!(scene.add_ball([2.6, -1.0]), off(2.6));
+        assert_eq!(
+            scene.add_ball([0.5 + r, 0.6]),
+            Err(Error::OutOfRange {
+                field: Field::Spacing,
+                value: (0.5 + r) - 0.5,
+            })
+        );
+        assert_eq!(scene.add_ball([0.5 + 2.0 * r, 0.6]), Ok(1));
+        let message = scene.add_ball([0.5, 0.6]).unwrap_err().to_string();
+        assert_eq!(
+            message,
+            "spacing = 0 is outside centre distances of at least 2R (balls may touch)"
+        );
+    }
+
     #[test]
     fn contact_distance_near_a_graze_keeps_its_digits() {
         for set in [BallSet::POOL, BallSet::SNOOKER, BallSet::CAROM] {
