@@ -73,6 +73,10 @@ pub enum Field {
     Spin,
     /// Distance between two ball centres in a scene (m): at least `2R`.
     Spacing,
+    /// Ball radius of a shot setup's collision parameters (m): must be the scene's.
+    SetupRadius,
+    /// Aim angle (rad, counter-clockwise from the table's `x` axis).
+    AimAngle,
 }
 
 impl Field {
@@ -106,6 +110,8 @@ impl Field {
             Field::Velocity => "velocity",
             Field::Spin => "spin",
             Field::Spacing => "spacing",
+            Field::SetupRadius => "setup_radius",
+            Field::AimAngle => "aim_angle",
             Field::CueSpeed => "cue_speed",
             Field::CueMass => "cue_mass",
             Field::TipRestitution => "tip_restitution",
@@ -143,6 +149,8 @@ impl Field {
             Field::Velocity => "[-1000, 1000] m/s per component",
             Field::Spin => "[-1e6, 1e6] rad/s per component",
             Field::Spacing => "centre distances of at least 2R (balls may touch)",
+            Field::SetupRadius => "the scene's ball radius (to 1e-6 relative)",
+            Field::AimAngle => "[-1000, 1000] rad",
             Field::CueSpeed => "(0, 20] m/s",
             Field::CueMass => "[0.1, 2] kg",
             Field::TipRestitution => "[0, 1]",

@@ -21,7 +21,7 @@ use crate::math;
 use crate::model::{collide, Model};
 use crate::outcome::Outcome;
 use crate::params::Params;
-use crate::strike::{strike, Cue, Strike, TipOffset};
+use crate::strike::{strike, Cue, Strike, TipOffset, MAX_CUE_SPEED};
 use crate::table::Scene;
 use crate::travel::{Cloth, Motion};
 use crate::vector::Vec3;
@@ -38,8 +38,11 @@ pub struct Stroke {
 }
 
 impl Stroke {
-    /// Stroke aimed along `direction` (table frame, any finite non-zero length).
+    /// Stroke at `cue_speed` (m/s, in `(0, 20]`, [`Field::CueSpeed`]) aimed along
+    /// `direction` (table frame, any finite non-zero length, [`Field::Aim`]). The tip
+    /// offset's bound needs the ball radius: [`play`] checks it.
     pub fn new(cue_speed: f32, tip: TipOffset, direction: [f32; 2]) -> Result<Self> {
+        let cue_speed = check(Field::CueSpeed, cue_speed, 0.0, MAX_CUE_SPEED, true)?;
         let (x, y) = (direction[0], direction[1]);
         if !math::is_finite(x) || !math::is_finite(y) {
             return Err(Error::NotFinite { field: Field::Aim });
@@ -62,9 +65,10 @@ impl Stroke {
         })
     }
 
-    /// Stroke aimed at `angle` (rad, counter-clockwise from the table's `x` axis).
+    /// Stroke aimed at `angle` (rad, counter-clockwise from the table's `x` axis, in
+    /// `[-1000, 1000]`, [`Field::AimAngle`]).
     pub fn at_angle(cue_speed: f32, tip: TipOffset, angle: f32) -> Result<Self> {
-        let angle = check(Field::Aim, angle, -1e3, 1e3, false)?;
+        let angle = check(Field::AimAngle, angle, -1e3, 1e3, false)?;
         Self::new(cue_speed, tip, [math::cos(angle), math::sin(angle)])
     }
 
@@ -126,15 +130,30 @@ pub struct Shot {
 }
 
 /// Play `stroke` on `scene` with the model of `setup`.
+///
+/// Errors: the setup's ball radius is not the scene's ([`Field::SetupRadius`]), the
+/// stroke's cue speed or tip offset is out of range ([`crate::strike::strike`]), an
+/// `Auto` tolerance is out of range ([`Field::Tolerance`], whether or not a ball is
+/// hit).
 pub fn play(scene: &Scene, stroke: &Stroke, setup: &ShotSetup) -> Result<Shot> {
+    check_model(setup.model)?;
     let model = setup.model;
     play_with(scene, stroke, setup, |params, impact| {
         collide(params, impact, model)
     })
 }
 
+/// The `Auto` tolerance must be in `(0, 1]` (checked up front: `collide` checks it only
+/// when a ball is hit).
+pub(crate) fn check_model(model: Model) -> Result<()> {
+    if let Model::Auto { tolerance } = model {
+        check(Field::Tolerance, tolerance, 0.0, 1.0, true)?;
+    }
+    Ok(())
+}
+
 /// Play `stroke` on `scene`, predicting the collision with `collision` (e.g. a host-side
-/// reference solver).
+/// reference solver); `setup.model` is not used.
 pub fn play_with<F>(
     scene: &Scene,
     stroke: &Stroke,
@@ -148,7 +167,7 @@ where
     let radius = scene.radius();
     if math::abs(params.radius() - radius) > 1e-6 * radius {
         return Err(Error::OutOfRange {
-            field: Field::Radius,
+            field: Field::SetupRadius,
             value: params.radius(),
         });
     }
@@ -359,6 +378,49 @@ mod tests {
                 Err(Error::NotFinite { field: Field::Aim })
             );
         }
+    }
+
+    /// Invalid strokes and setups were caught late or named the wrong field: a NaN or
+    /// negative cue speed built a `Stroke` (refused only when played), an aim angle
+    /// beyond ±1000 rad was reported as an aim direction, a setup for another ball
+    /// size as a radius outside `[0.001, 1]` m (it was inside), and an `Auto` tolerance
+    /// of NaN was accepted whenever no ball was hit.
+    #[test]
+    fn invalid_strokes_and_setups_name_their_field() {
+        fn out<T>(field: Field, value: f32) -> Result<T> {
+            Err(Error::OutOfRange { field, value })
+        }
+        let c = TipOffset::CENTRE;
+        assert_eq!(
+            Stroke::new(f32::NAN, c, [1.0, 0.0]),
+            Err(Error::NotFinite {
+                field: Field::CueSpeed
+            })
+        );
+        assert_eq!(Stroke::new(-2.0, c, [1.0, 0.0]), out(Field::CueSpeed, -2.0));
+        assert_eq!(Stroke::new(21.0, c, [1.0, 0.0]), out(Field::CueSpeed, 21.0));
+        assert_eq!(Stroke::at_angle(2.0, c, 2e3), out(Field::AimAngle, 2e3));
+        let r = BallSet::POOL.radius;
+        let mut scene = Scene::new(Table::pool(), r, [0.5, 0.6]).unwrap();
+        scene.add_ball([1.5, 0.6]).unwrap();
+        let away = Stroke::new(2.0, c, [0.0, 1.0]).unwrap();
+        let mut snooker = setup(Model::KimGrip);
+        snooker.params = Params::POOL
+            .with_ball(BallSet::SNOOKER.radius, BallSet::SNOOKER.mass)
+            .unwrap();
+        assert_eq!(
+            play(&scene, &away, &snooker).map(|_| ()),
+            out(Field::SetupRadius, BallSet::SNOOKER.radius)
+        );
+        let nan = setup(Model::Auto {
+            tolerance: f32::NAN,
+        });
+        assert_eq!(
+            play(&scene, &away, &nan).map(|_| ()),
+            Err(Error::NotFinite {
+                field: Field::Tolerance
+            })
+        );
     }
 
     /// A cue ball that stops exactly touching a ball arrived with zero speed, and `play`
