@@ -11,6 +11,8 @@
 //! 0.05 rad and kept inside the aims that hit the chosen ball first; at most
 //! [`MAX_ITERATIONS`] evaluations; converged when `|m| ≤ 10 µm`.
 
+use core::fmt;
+
 use crate::error::{Error, Field, Result};
 use crate::impact::Impact;
 use crate::math;
@@ -46,6 +48,27 @@ pub enum AimError {
 impl From<Error> for AimError {
     fn from(e: Error) -> Self {
         AimError::Invalid(e)
+    }
+}
+
+impl fmt::Display for AimError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            AimError::Invalid(e) => e.fmt(f),
+            AimError::ObjectBallNotHit => f.write_str(
+                "no aim: at the ghost-ball aim the cue ball does not reach the object ball \
+                 first (another ball is in the way, or the cue ball stops short)",
+            ),
+            AimError::PocketUnreachable => f.write_str(
+                "no aim: the object ball cannot reach the pocket (it stops short, or the \
+                 cut is too thin)",
+            ),
+            AimError::NotConverged => write!(
+                f,
+                "no aim: the solver did not converge in {MAX_ITERATIONS} forward evaluations \
+                 (the cut may be too thin)"
+            ),
+        }
     }
 }
 
@@ -86,6 +109,7 @@ pub fn solve_aim(
     tip: TipOffset,
     setup: &ShotSetup,
 ) -> core::result::Result<AimSolution, AimError> {
+    crate::shot::check_model(setup.model)?;
     let model = setup.model;
     solve_aim_with(scene, object, pocket, cue_speed, tip, setup, |p, i| {
         collide(p, i, model)
@@ -119,7 +143,7 @@ where
         .get(pocket)
         .copied()
         .ok_or(Error::OutOfRange {
-            field: Field::BallIndex,
+            field: Field::Pocket,
             value: pocket as f32,
         })?;
     let (cue, ball) = (balls[0], balls[object]);
@@ -242,6 +266,52 @@ mod tests {
     use crate::table::{BallSet, Table};
     use crate::travel::Cloth;
     use crate::Model;
+
+    /// A pocket index out of range was reported as a ball index ("ball = 6 is outside
+    /// an index of a ball in the scene"), and `AimError` had no message of its own.
+    #[test]
+    fn pocket_index_and_messages() {
+        extern crate std;
+        use std::string::ToString;
+        let setup = ShotSetup {
+            params: Params::POOL,
+            cue: Cue::TYPICAL,
+            cloth: Cloth::TYPICAL,
+            model: Model::KimGrip,
+        };
+        let mut scene = Scene::new(Table::pool(), BallSet::POOL.radius, [0.5, 0.6]).unwrap();
+        scene.add_ball([1.5, 0.6]).unwrap();
+        let e = solve_aim(&scene, 1, 6, 2.0, TipOffset::CENTRE, &setup).unwrap_err();
+        assert_eq!(
+            e,
+            AimError::Invalid(Error::OutOfRange {
+                field: Field::Pocket,
+                value: 6.0
+            })
+        );
+        assert_eq!(
+            e.to_string(),
+            "pocket = 6 is outside an index of a pocket of the table"
+        );
+        assert!(AimError::NotConverged
+            .to_string()
+            .contains("24 forward evaluations"));
+        assert!(AimError::ObjectBallNotHit
+            .to_string()
+            .starts_with("no aim: "));
+        assert!(AimError::PocketUnreachable
+            .to_string()
+            .starts_with("no aim: "));
+        let mut bad = setup;
+        bad.model = Model::Auto { tolerance: 2.0 };
+        assert_eq!(
+            solve_aim(&scene, 1, 3, 2.0, TipOffset::CENTRE, &bad),
+            Err(AimError::Invalid(Error::OutOfRange {
+                field: Field::Tolerance,
+                value: 2.0
+            }))
+        );
+    }
 
     /// An object ball exactly on a pocket's target centre (a legal position: the
     /// centre is inside the cushion lines) made the direction to the pocket 0/0 and the
