@@ -252,10 +252,12 @@ impl Scene {
         // 1e-5 rad).
         let across = math::abs(across);
         let gap = (reach - across) * (reach + across);
-        if along <= 0.0 || gap < 0.0 {
-            return None;
+        // Written so that a NaN aim gives `None` (it gave a contact at distance 0).
+        if along > 0.0 && gap >= 0.0 {
+            Some(math::max(along - math::sqrt(gap), 0.0))
+        } else {
+            None
         }
-        Some(math::max(along - math::sqrt(gap), 0.0))
     }
 }
 
@@ -330,6 +332,24 @@ mod tests {
             message,
             "spacing = 0 is outside centre distances of at least 2R (balls may touch)"
         );
+    }
+
+    /// `contact_distance` with a NaN aim reported a contact at distance 0 (NaN failed
+    /// both rejection tests and `max(NaN, 0)` is 0); an infinite one likewise. Now no
+    /// contact.
+    #[test]
+    fn contact_distance_of_a_nan_aim_is_none() {
+        let mut scene = Scene::new(Table::pool(), BallSet::POOL.radius, [0.5, 0.6]).unwrap();
+        scene.add_ball([1.5, 0.6]).unwrap();
+        for aim in [
+            Vec3::new(f32::NAN, 0.0, 0.0),
+            Vec3::new(0.0, f32::NAN, 0.0),
+            Vec3::new(f32::INFINITY, f32::NEG_INFINITY, 0.0),
+        ] {
+            assert_eq!(scene.contact_distance(aim, 1), None, "{aim:?}");
+        }
+        assert_eq!(scene.contact_distance(Vec3::new(1.0, 0.0, 0.0), 0), None);
+        assert_eq!(scene.contact_distance(Vec3::new(1.0, 0.0, 0.0), 2), None);
     }
 
     #[test]
