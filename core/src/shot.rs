@@ -204,7 +204,7 @@ where
         else {
             break None;
         };
-        match collide_at(scene, setup, &cue_before, index, time, &mut collision)? {
+        match collide_at(scene, setup, &cue_before, aim, index, time, &mut collision)? {
             Some(contact) => break Some(contact),
             None => passed |= 1 << index,
         }
@@ -220,6 +220,7 @@ fn collide_at<F>(
     scene: &Scene,
     setup: &ShotSetup,
     cue_before: &Motion,
+    aim: Vec3,
     index: usize,
     time: f32,
     collision: &mut F,
@@ -233,8 +234,12 @@ where
         field: Field::BallIndex,
         value: index as f32,
     })?;
-    let centres = object_position - cue_position;
-    let centres = centres * (1.0 / centres.length());
+    // The line of centres from the contact geometry rather than from the computed
+    // positions: exact for a straight shot (the positions' rounding turned it by an ulp
+    // even then), exactly mirrored with the scene, and accurate to a few ε near a graze.
+    let Some(centres) = scene.contact_line(aim, index) else {
+        return Ok(None);
+    };
     let across = Vec3::new(-centres.y, centres.x, 0.0); // collision-frame y = ẑ × x
     let v = cue_before.velocity_at(time);
     let w = cue_before.spin_at(time);

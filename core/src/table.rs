@@ -261,6 +261,41 @@ impl Scene {
     }
 }
 
+impl Scene {
+    /// Unit line of centres (cue ball → ball `index`, table frame) where the cue ball
+    /// moving along the unit `aim` first touches it, from the same geometry as
+    /// [`Scene::contact_distance`]: `(√gap · aim + lateral · ẑ×aim) / 2R`, with
+    /// `lateral` the ball's offset from the path. Exact where it should be (a straight
+    /// shot: `aim`), and exactly mirrored with the scene; `None` when there is no
+    /// contact. Balls touching (or within the placement tolerance of it) already: the
+    /// line of centres where they are.
+    pub(crate) fn contact_line(&self, aim: Vec3, index: usize) -> Option<Vec3> {
+        let (cue, target) = (*self.balls.first()?, *self.balls.get(index)?);
+        let to_target = target - cue;
+        let along = to_target.dot(aim);
+        let side = Vec3::new(-aim.y, aim.x, 0.0);
+        let lateral = to_target.dot(side);
+        let reach = 2.0 * self.radius;
+        let offset = math::abs(lateral);
+        let gap = (reach - offset) * (reach + offset);
+        if !(along > 0.0 && gap >= 0.0) {
+            return None;
+        }
+        let root = math::sqrt(gap);
+        let line = if along - root >= 0.0 {
+            aim * root + side * lateral
+        } else {
+            to_target
+        };
+        let length = if along - root >= 0.0 {
+            reach
+        } else {
+            to_target.length()
+        };
+        Some(Vec3::new(line.x / length, line.y / length, 0.0))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
@@ -350,6 +385,39 @@ mod tests {
         }
         assert_eq!(scene.contact_distance(Vec3::new(1.0, 0.0, 0.0), 0), None);
         assert_eq!(scene.contact_distance(Vec3::new(1.0, 0.0, 0.0), 2), None);
+    }
+
+    /// The line of centres at contact, from the geometry, is exactly the aim for a
+    /// straight shot (also touching) and within a few ε of the f64 geometry otherwise.
+    #[test]
+    fn contact_line_matches_the_geometry() {
+        let r = BallSet::POOL.radius;
+        let x = Vec3::new(1.0, 0.0, 0.0);
+        for object in [[1.5f32, 0.6], [0.5 + 2.0 * r, 0.6]] {
+            let mut scene = Scene::new(Table::pool(), r, [0.5, 0.6]).unwrap();
+            scene.add_ball(object).unwrap();
+            assert_eq!(scene.contact_line(x, 1), Some(x));
+        }
+        let mut scene = Scene::new(Table::pool(), r, [0.5, 0.6]).unwrap();
+        scene.add_ball([1.5, 0.63]).unwrap();
+        for turn in [-0.02f32, -0.01, 0.0, 0.02, 0.04] {
+            let aim = Vec3::new(turn.cos(), turn.sin(), 0.0);
+            let line = scene.contact_line(aim, 1).unwrap();
+            let (ax, ay) = (f64::from(aim.x), f64::from(aim.y));
+            let (tx, ty) = (1.0f64, f64::from(0.63f32) - f64::from(0.6f32));
+            let along = tx * ax + ty * ay;
+            let lateral = -tx * ay + ty * ax;
+            let reach = 2.0 * f64::from(r);
+            let root = (reach * reach - lateral * lateral).sqrt();
+            let expected = [
+                (ax * root - ay * lateral) / reach,
+                (ay * root + ax * lateral) / reach,
+            ];
+            assert!(along > root);
+            let error = (f64::from(line.x) - expected[0]).hypot(f64::from(line.y) - expected[1]);
+            assert!(error < 1e-5, "{turn}: {line:?} vs {expected:?}");
+        }
+        assert_eq!(scene.contact_line(Vec3::new(0.0, 1.0, 0.0), 1), None);
     }
 
     #[test]
