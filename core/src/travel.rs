@@ -208,7 +208,10 @@ impl Motion {
         Vec3::new(-v.y / self.radius, v.x / self.radius, w.z)
     }
 
-    /// Each phase as `r(τ) = p + q τ + s τ²`, `τ ∈ [0, span]`, starting at `offset`.
+    /// Each phase as `r(τ) − start = p + q τ + s τ²`, `τ ∈ [0, span]`, starting at
+    /// time `offset`. Displacements from the start rather than positions: they keep
+    /// their digits whatever the start, and a mirrored start gives exactly mirrored
+    /// times.
     fn phases(&self) -> [(f32, f32, Vec3, Vec3, Vec3); 3] {
         let speed = self.rolling_velocity.length();
         let rolling_direction = if speed > 0.0 {
@@ -220,21 +223,21 @@ impl Motion {
             (
                 0.0,
                 self.air_time,
-                self.start,
+                Vec3::ZERO,
                 self.initial_velocity,
                 Vec3::ZERO,
             ),
             (
                 self.air_time,
                 self.sliding_time,
-                self.landing(),
+                self.landing_offset(),
                 self.initial_velocity,
                 self.sliding_acceleration * 0.5,
             ),
             (
                 self.air_time + self.sliding_time,
                 self.rolling_time,
-                self.rolling_start(),
+                self.rolling_offset(),
                 self.rolling_velocity,
                 rolling_direction * (-0.5 * self.rolling_deceleration),
             ),
@@ -248,7 +251,7 @@ impl Motion {
             if span <= 0.0 {
                 continue;
             }
-            let c = direction.dot(p - self.start) - distance;
+            let c = direction.dot(p) - distance;
             if c >= 0.0 {
                 // Already there when this phase starts: reached at the end of the
                 // previous one, whose root rounding put just past its end.
@@ -276,44 +279,67 @@ impl Motion {
 
     /// Where the cloth phase starts (after any flight).
     pub fn landing(&self) -> Vec3 {
-        self.start + self.initial_velocity * self.air_time
+        self.start + self.landing_offset()
     }
 
     /// Where pure rolling starts.
     pub fn rolling_start(&self) -> Vec3 {
-        let t = self.sliding_time;
-        self.landing() + self.initial_velocity * t + self.sliding_acceleration * (0.5 * t * t)
+        self.start + self.rolling_offset()
     }
 
     /// Where the ball comes to rest.
     pub fn rest(&self) -> Vec3 {
-        let speed = self.rolling_velocity.length();
-        if speed == 0.0 {
-            return self.rolling_start();
-        }
-        self.rolling_start() + self.rolling_velocity * (0.5 * self.rolling_time)
+        self.start + self.rest_offset()
     }
 
     /// Position at time `t` (s) after the start (clamped to the rest position; a
     /// negative or NaN time is the start).
     pub fn position_at(&self, t: f32) -> Vec3 {
+        self.start + self.displacement_at(t)
+    }
+
+    /// Displacement from the start at time `t` (s): [`Motion::position_at`] less the
+    /// start, computed without it (so it keeps its digits far from the origin, and a
+    /// mirrored motion gives an exactly mirrored displacement).
+    pub fn displacement_at(&self, t: f32) -> Vec3 {
         let t = start_clamped(t);
         if t <= self.air_time {
-            return self.start + self.initial_velocity * t;
+            return self.initial_velocity * t;
         }
         let t = t - self.air_time;
         if t <= self.sliding_time {
-            return self.landing()
+            return self.landing_offset()
                 + self.initial_velocity * t
                 + self.sliding_acceleration * (0.5 * t * t);
         }
         let t = t - self.sliding_time;
         if t >= self.rolling_time {
-            return self.rest();
+            return self.rest_offset();
         }
         let speed = self.rolling_velocity.length();
         let travelled = speed * t - 0.5 * self.rolling_deceleration * t * t;
-        self.rolling_start() + self.rolling_velocity * (travelled / speed)
+        self.rolling_offset() + self.rolling_velocity * (travelled / speed)
+    }
+
+    /// Displacement from the start where the cloth phase starts.
+    fn landing_offset(&self) -> Vec3 {
+        self.initial_velocity * self.air_time
+    }
+
+    /// Displacement from the start where pure rolling starts.
+    fn rolling_offset(&self) -> Vec3 {
+        let t = self.sliding_time;
+        self.landing_offset()
+            + self.initial_velocity * t
+            + self.sliding_acceleration * (0.5 * t * t)
+    }
+
+    /// Displacement from the start at rest.
+    fn rest_offset(&self) -> Vec3 {
+        if self.rolling_velocity.length() == 0.0 {
+            return self.rolling_offset();
+        }
+        self.rolling_offset() + self.rolling_velocity * (0.5 * self.rolling_time)
     }
 
     /// Velocity at time `t` (s) after the start (horizontal; a negative or NaN time is
@@ -343,16 +369,18 @@ impl Motion {
             min: self.start,
             max: self.start,
         };
-        let control = self.landing() + self.initial_velocity * (0.5 * self.sliding_time);
-        for point in [self.landing(), control, self.rolling_start(), self.rest()] {
-            b.include(point);
+        let landing = self.landing_offset();
+        let control = landing + self.initial_velocity * (0.5 * self.sliding_time);
+        for offset in [landing, control, self.rolling_offset(), self.rest_offset()] {
+            b.include(self.start + offset);
         }
         b
     }
 
     /// First time (s) the centre crosses the segment from `a` to `b` (table plane), if
     /// it does before stopping. Each phase is a polynomial of degree ≤ 2 in time, so the
-    /// crossings are roots of `n · (r(t) − a) = 0`, `n ⟂ (b − a)`.
+    /// crossings are roots of `n · (r(t) − a) = 0`, `n ⟂ (b − a)`, with
+    /// `r(t) − a = (start − a) + displacement`.
     pub fn crossing(&self, a: Vec3, b: Vec3) -> Option<f32> {
         let along = Vec3::new(b.x - a.x, b.y - a.y, 0.0);
         let normal = Vec3::new(-along.y, along.x, 0.0);
@@ -360,6 +388,8 @@ impl Motion {
         if length_squared == 0.0 {
             return None;
         }
+        // From `a` to the start: the phases are displacements from the start.
+        let base = self.start - a;
         // Side of the line at the previous phase's start, and whether that phase had a
         // root inside it.
         let mut previous: Option<(f32, bool)> = None;
@@ -367,12 +397,12 @@ impl Motion {
             if span <= 0.0 {
                 continue;
             }
-            let c0 = normal.dot(p - a);
+            let c0 = normal.dot(base + p);
             if let Some((side, crossed)) = previous {
                 if !crossed && side * c0 < 0.0 {
                     // The previous phase ended on the other side without a root inside
                     // it: its crossing rounded to just past its end. It is here.
-                    let along_fraction = along.dot(p - a) / length_squared;
+                    let along_fraction = along.dot(base + p) / length_squared;
                     if (0.0..=1.0).contains(&along_fraction) {
                         return Some(offset);
                     }
@@ -389,8 +419,8 @@ impl Motion {
                     continue;
                 }
                 crossed = true;
-                let point = p + q * tau + s * (tau * tau);
-                let along_fraction = along.dot(point - a) / length_squared;
+                let point = base + p + q * tau + s * (tau * tau);
+                let along_fraction = along.dot(point) / length_squared;
                 if (0.0..=1.0).contains(&along_fraction) && best.is_none_or(|b| tau < b) {
                     best = Some(tau);
                 }
@@ -639,6 +669,54 @@ mod tests {
             assert_eq!(m.position_at(t), m.start);
             assert_eq!(m.velocity_at(t), m.initial_velocity);
             assert_eq!(m.spin_at(t), m.initial_spin);
+        }
+    }
+
+    /// Times and displacements do not depend on where the motion starts, and a motion
+    /// mirrored across a line `y = c` (start on a grid where `2c − y` is exact) has
+    /// exactly mirrored displacements and exactly the same times to reach a distance
+    /// and to cross a mirrored segment. Before, the phases were absolute positions: the
+    /// start's rounding entered every time (a contact while rolling, the pocket a ball
+    /// reaches), and the mirror image of a shot differed in the last bits.
+    #[test]
+    fn times_and_displacements_are_independent_of_the_start_and_mirror_exactly() {
+        let w = 1.27f32;
+        for (v, spin, vz) in [
+            (Vec3::new(1.3, 0.4, 0.0), Vec3::new(-9.0, 35.0, 12.0), 0.0),
+            (Vec3::new(-0.7, 1.1, 0.0), Vec3::new(20.0, -50.0, -3.0), 0.3),
+            (Vec3::new(2.0, -0.2, 0.0), Vec3::new(0.0, -80.0, 0.0), 0.0),
+        ] {
+            let v = Vec3::new(v.x, v.y, vz);
+            let mirror_v = Vec3::new(v.x, -v.y, v.z);
+            let mirror_w = Vec3::new(-spin.x, spin.y, -spin.z);
+            let start = Vec3::new(0.75, 0.3125, 0.0);
+            let image = Vec3::new(0.75, w - 0.3125, 0.0);
+            let m = Motion::new(start, v, spin, R, &Cloth::TYPICAL).unwrap();
+            let far =
+                Motion::new(Vec3::new(700.0, -300.0, 0.0), v, spin, R, &Cloth::TYPICAL).unwrap();
+            let n = Motion::new(image, mirror_v, mirror_w, R, &Cloth::TYPICAL).unwrap();
+            for k in 0..=20 {
+                let t = m.stop_time() * k as f32 / 16.0;
+                let d = m.displacement_at(t);
+                assert_eq!(far.displacement_at(t), d);
+                assert_eq!(n.displacement_at(t), Vec3::new(d.x, -d.y, d.z));
+            }
+            for distance in [0.01f32, 0.2, 0.5, 1.0] {
+                let dir = Vec3::new(v.x, v.y, 0.0) * (1.0 / Vec3::new(v.x, v.y, 0.0).length());
+                let mirror_dir = Vec3::new(dir.x, -dir.y, 0.0);
+                assert_eq!(
+                    m.time_to_reach(dir, distance),
+                    n.time_to_reach(mirror_dir, distance)
+                );
+            }
+            for (a, b) in [
+                (Vec3::new(0.0, 0.5, 0.0), Vec3::new(3.0, 0.5, 0.0)),
+                (Vec3::new(1.0, -1.0, 0.0), Vec3::new(1.25, 2.0, 0.0)),
+                (Vec3::new(-1.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 0.0)),
+            ] {
+                let mirror = |p: Vec3| Vec3::new(p.x, w - p.y, 0.0);
+                assert_eq!(m.crossing(a, b), n.crossing(mirror(a), mirror(b)));
+            }
         }
     }
 
