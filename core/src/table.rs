@@ -91,14 +91,19 @@ impl Table {
             // moved one radius in along the diagonal.
             let jaw = corner_mouth * core::f32::consts::FRAC_1_SQRT_2;
             let inset = radius * core::f32::consts::SQRT_2;
-            for (corner, dx, dy) in [
-                (Vec3::new(0.0, 0.0, 0.0), 1.0, 1.0),
-                (Vec3::new(length, 0.0, 0.0), -1.0, 1.0),
-                (Vec3::new(0.0, width, 0.0), 1.0, -1.0),
-                (Vec3::new(length, width, 0.0), -1.0, -1.0),
+            // Across the table (y) the near and far ends are exact mirror images,
+            // `y_near = W − y_far` in f32, so that a scene mirrored across the long axis
+            // meets exactly mirrored pockets.
+            let (a_near, a_far) = mirrored(width, inset);
+            let (b_near, b_far) = mirrored(width, jaw + inset);
+            for (x, dx, a_y, b_y) in [
+                (0.0, 1.0, a_near, b_near),
+                (length, -1.0, a_near, b_near),
+                (0.0, 1.0, a_far, b_far),
+                (length, -1.0, a_far, b_far),
             ] {
-                let a = corner + Vec3::new(dx * (jaw + inset), dy * inset, 0.0);
-                let b = corner + Vec3::new(dx * inset, dy * (jaw + inset), 0.0);
+                let a = Vec3::new(x + dx * (jaw + inset), a_y, 0.0);
+                let b = Vec3::new(x + dx * inset, b_y, 0.0);
                 pockets
                     .push(Pocket { a, b })
                     .map_err(|_| Error::OutOfRange {
@@ -108,8 +113,8 @@ impl Table {
             }
         }
         if side_mouth > 0.0 {
-            for (y, inward) in [(0.0, 1.0), (width, -1.0)] {
-                let y = y + inward * radius;
+            let (near, far) = mirrored(width, radius);
+            for y in [near, far] {
                 let a = Vec3::new(0.5 * (length - side_mouth), y, 0.0);
                 let b = Vec3::new(0.5 * (length + side_mouth), y, 0.0);
                 pockets
@@ -169,6 +174,18 @@ impl Table {
     pub fn contains(&self, p: Vec3, radius: f32) -> bool {
         p.x >= radius && p.x <= self.length - radius && p.y >= radius && p.y <= self.width - radius
     }
+}
+
+/// `(y, W − y)` for a `0 < y ≤ W/2` near the `y = 0` rail, rounded so that each is
+/// exactly `W` minus the other in f32 and neither moves outwards (a side pocket's target
+/// stays on the cushion line or inside it): the far one is `W − y` rounded down, the
+/// near one `W − far`, exact (Sterbenz) as `far ≥ W/2`.
+fn mirrored(width: f32, y: f32) -> (f32, f32) {
+    let mut far = width - y;
+    if width - far < y && far > 0.0 {
+        far = f32::from_bits(far.to_bits() - 1);
+    }
+    (width - far, far)
 }
 
 /// Balls at rest on a table: index 0 is the cue ball.
@@ -418,6 +435,36 @@ mod tests {
             assert!(error < 1e-5, "{turn}: {line:?} vs {expected:?}");
         }
         assert_eq!(scene.contact_line(Vec3::new(0.0, 1.0, 0.0), 1), None);
+    }
+
+    /// Each pocket's mirror image across the long axis (`y → W − y`, in f32) is
+    /// exactly another pocket, ends in the same order: corner 0 ↔ 2, 1 ↔ 3, side 4 ↔ 5.
+    /// The near pockets were at `inset`, the far ones at `W − inset` rounded, so
+    /// mirrored shots into them differed in the last bits.
+    #[test]
+    fn pockets_mirror_exactly_across_the_long_axis() {
+        let custom = Table::new(2.1, 1.07, 0.11, 0.125, 0.0286).unwrap();
+        for table in [Table::pool(), Table::snooker(), custom] {
+            let w = table.width();
+            let p = table.pockets();
+            assert_eq!(p.len(), 6);
+            for (i, j) in [(0, 2), (1, 3), (4, 5)] {
+                for (near, far) in [(p[i].a, p[j].a), (p[i].b, p[j].b)] {
+                    assert_eq!(near.x, far.x);
+                    assert_eq!(w - near.y, far.y, "{i} {j}");
+                    assert_eq!(w - far.y, near.y, "{i} {j}");
+                }
+            }
+            // Side pockets on (or inside) the cushion lines `y = R` and `y = W − R`.
+            let r = if w > 1.5 {
+                BallSet::SNOOKER.radius
+            } else if w > 1.1 {
+                BallSet::POOL.radius
+            } else {
+                0.0286
+            };
+            assert!(p[4].a.y >= r && p[5].a.y <= w - r, "{:?} {:?}", p[4], p[5]);
+        }
     }
 
     #[test]
