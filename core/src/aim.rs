@@ -149,10 +149,14 @@ where
     let (cue, ball) = (balls[0], balls[object]);
     let centre = target.centre();
     let radius = scene.radius();
-    // Mouth line: through the pocket centre along its segment.
-    let along = target.b - target.a;
-    let along = along * (1.0 / along.length());
-    let to_pocket = centre - ball;
+    // Mouth line: through the pocket centre along its segment. Everything below is
+    // relative to the ball and the segment's end `a` (never through absolute
+    // positions), so a scene mirrored across the table's long axis solves to exactly
+    // the mirrored aim.
+    let mouth = target.b - target.a;
+    let along = mouth * (1.0 / mouth.length());
+    let half_mouth = 0.5 * along.dot(mouth);
+    let to_pocket = (target.a - ball) + mouth * 0.5;
     let distance = to_pocket.length();
     let direction = if distance > 0.0 {
         to_pocket * (1.0 / distance)
@@ -170,9 +174,15 @@ where
         }
     };
     let naive_ghost = ball - direction * (2.0 * radius);
-    let naive_vector = naive_ghost - cue;
+    let naive_vector = (ball - cue) - direction * (2.0 * radius);
     let naive_angle = math::atan2(naive_vector.y, naive_vector.x);
-    let (far_a, far_b) = (centre - along * 20.0, centre + along * 20.0);
+    // The first probe turns towards the side the mouth runs to (a side that mirrors
+    // with the scene; a fixed +1e-3 rad made mirrored solves take different paths).
+    let turn = if direction.x * along.y - direction.y * along.x >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    };
 
     let mut miss = |angle: f32| -> core::result::Result<(f32, Vec3, f32), AimError> {
         let stroke = Stroke::at_angle(cue_speed, tip, angle)?;
@@ -181,20 +191,20 @@ where
         if contact.object_ball != object {
             return Err(AimError::ObjectBallNotHit);
         }
-        let t = contact
-            .object_after
-            .crossing(far_a, far_b)
+        let path = &contact.object_after; // starts at the object ball
+        let t = path
+            .crossing_line(target.a, along)
             .ok_or(AimError::PocketUnreachable)?;
-        let at = contact.object_after.position_at(t);
+        let at = (ball - target.a) + path.displacement_at(t);
         Ok((
-            along.dot(at - centre),
+            along.dot(at) - half_mouth,
             contact.cue_position,
             contact.cut_angle,
         ))
     };
 
     let (mut angle_a, mut miss_a) = (naive_angle, miss(naive_angle)?.0);
-    let mut angle_b = naive_angle + 1e-3;
+    let mut angle_b = naive_angle + turn * 1e-3;
     let mut evaluations = 1;
     let mut last = miss(angle_b);
     evaluations += 1;
@@ -218,7 +228,7 @@ where
             let naive_aim = Vec3::new(math::cos(naive_angle), math::sin(naive_angle), 0.0);
             let correction = angle_b - naive_angle;
             let distance = (ball - cue).length();
-            let naive_cut = naive_cut_angle(cue, naive_ghost, ball);
+            let naive_cut = naive_cut_angle(naive_vector, direction);
             return Ok(AimSolution {
                 aim,
                 ghost_ball: ghost,
@@ -239,7 +249,7 @@ where
         let step = if slope != 0.0 && math::is_finite(slope) {
             -miss_b / slope
         } else {
-            1e-3
+            turn * 1e-3
         };
         let step = step.clamp(-0.05, 0.05);
         angle_a = angle_b;
@@ -250,13 +260,11 @@ where
     }
 }
 
-/// Cut angle (rad) of the naive aim: between the line of centres at the ghost ball and
-/// the aim line.
-fn naive_cut_angle(cue: Vec3, ghost: Vec3, ball: Vec3) -> f32 {
-    let aim = ghost - cue;
-    let centres = ball - ghost;
-    let cross = centres.x * aim.y - centres.y * aim.x;
-    math::atan2(cross, centres.dot(aim))
+/// Cut angle (rad) of the naive aim `aim` (cue ball to ghost ball): between the line of
+/// centres there (`direction`, to the pocket) and the aim line.
+fn naive_cut_angle(aim: Vec3, direction: Vec3) -> f32 {
+    let cross = direction.x * aim.y - direction.y * aim.x;
+    math::atan2(cross, direction.dot(aim))
 }
 
 #[cfg(test)]
@@ -311,6 +319,62 @@ mod tests {
                 value: 2.0
             }))
         );
+    }
+
+    /// A scene mirrored across the table's long axis (positions where `W − y` is
+    /// exact) solves to exactly the mirrored aim, correction, cut and residual in as
+    /// many evaluations. The solver's first probe was always +1e-3 rad and its miss was
+    /// measured through absolute positions, so mirrored solves took different paths and
+    /// differed by up to the solver's tolerance.
+    #[test]
+    fn mirrored_scenes_solve_to_mirrored_aims() {
+        let setup = ShotSetup {
+            params: Params::POOL,
+            cue: Cue::TYPICAL,
+            cloth: Cloth::TYPICAL,
+            model: Model::KimGrip,
+        };
+        let table = Table::pool();
+        let w = table.width();
+        let r = BallSet::POOL.radius;
+        let mut solved = 0;
+        for (cue, object, pocket, image_pocket) in [
+            ([0.6f32, 0.3125f32], [1.4f32, 0.5f32], 3usize, 1usize),
+            ([0.75, 0.625], [1.5, 0.375], 1, 3),
+            ([2.0, 0.25], [1.125, 0.5], 0, 2),
+            ([0.5, 0.5], [1.0, 0.25], 4, 5),
+        ] {
+            for (side, height) in [(0.0f32, 0.0f32), (0.3, -0.2), (-0.25, 0.3)] {
+                let scene = |y: fn(f32, f32) -> f32| {
+                    let mut s = Scene::new(table.clone(), r, [cue[0], y(w, cue[1])]).unwrap();
+                    s.add_ball([object[0], y(w, object[1])]).unwrap();
+                    s
+                };
+                let (a, b) = (scene(|_, y| y), scene(|w, y| w - y));
+                let tip = TipOffset::from_radius_fraction(side, height, r).unwrap();
+                let image_tip = TipOffset::new(-tip.side(), tip.height()).unwrap();
+                let x = solve_aim(&a, 1, pocket, 3.0, tip, &setup);
+                let y = solve_aim(&b, 1, image_pocket, 3.0, image_tip, &setup);
+                let (x, y) = match (x, y) {
+                    (Ok(x), Ok(y)) => (x, y),
+                    (Err(e), Err(f)) => {
+                        assert_eq!(e, f);
+                        continue;
+                    }
+                    other => panic!("{other:?}"),
+                };
+                solved += 1;
+                assert_eq!(x.aim, Vec3::new(y.aim.x, -y.aim.y, 0.0));
+                assert_eq!(x.naive_aim, Vec3::new(y.naive_aim.x, -y.naive_aim.y, 0.0));
+                assert_eq!(x.correction_deg, -y.correction_deg);
+                assert_eq!(x.correction_mm, y.correction_mm);
+                assert_eq!(x.cut_angle_deg, -y.cut_angle_deg);
+                assert_eq!(x.thinner, y.thinner);
+                assert_eq!(x.evaluations, y.evaluations);
+                assert_eq!(x.residual, y.residual);
+            }
+        }
+        assert!(solved >= 9, "{solved}");
     }
 
     /// An object ball exactly on a pocket's target centre (a legal position: the

@@ -382,14 +382,30 @@ impl Motion {
     /// crossings are roots of `n · (r(t) − a) = 0`, `n ⟂ (b − a)`, with
     /// `r(t) − a = (start − a) + displacement`.
     pub fn crossing(&self, a: Vec3, b: Vec3) -> Option<f32> {
-        let along = Vec3::new(b.x - a.x, b.y - a.y, 0.0);
+        self.crossing_from(self.start - a, Vec3::new(b.x - a.x, b.y - a.y, 0.0), true)
+    }
+
+    /// First time (s) the centre crosses the whole line through `point` along
+    /// `direction` (any non-zero length), if it does before stopping.
+    pub fn crossing_line(&self, point: Vec3, direction: Vec3) -> Option<f32> {
+        self.crossing_from(
+            self.start - point,
+            Vec3::new(direction.x, direction.y, 0.0),
+            false,
+        )
+    }
+
+    /// Crossing of the line through `start − base` along `along`; within the segment
+    /// `along` long from there when `segment`. `base` is from the line's point to the
+    /// start: the phases are displacements from the start.
+    fn crossing_from(&self, base: Vec3, along: Vec3, segment: bool) -> Option<f32> {
         let normal = Vec3::new(-along.y, along.x, 0.0);
         let length_squared = along.dot(along);
         if length_squared == 0.0 {
             return None;
         }
-        // From `a` to the start: the phases are displacements from the start.
-        let base = self.start - a;
+        let within =
+            |point: Vec3| !segment || (0.0..=1.0).contains(&(along.dot(point) / length_squared));
         // Side of the line at the previous phase's start, and whether that phase had a
         // root inside it.
         let mut previous: Option<(f32, bool)> = None;
@@ -402,8 +418,7 @@ impl Motion {
                 if !crossed && side * c0 < 0.0 {
                     // The previous phase ended on the other side without a root inside
                     // it: its crossing rounded to just past its end. It is here.
-                    let along_fraction = along.dot(base + p) / length_squared;
-                    if (0.0..=1.0).contains(&along_fraction) {
+                    if within(base + p) {
                         return Some(offset);
                     }
                 }
@@ -420,8 +435,7 @@ impl Motion {
                 }
                 crossed = true;
                 let point = base + p + q * tau + s * (tau * tau);
-                let along_fraction = along.dot(point) / length_squared;
-                if (0.0..=1.0).contains(&along_fraction) && best.is_none_or(|b| tau < b) {
+                if within(point) && best.is_none_or(|b| tau < b) {
                     best = Some(tau);
                 }
             }
