@@ -6,11 +6,14 @@
 //! * `cargo xtask test` — every check: host fmt/clippy/tests, core for the target,
 //!   firmware fmt/clippy/build and size, the demo session and the end-to-end test in
 //!   QEMU.
+//! * `cargo xtask fuzz [--seconds N] [TARGET...]` — the cargo-fuzz targets of `fuzz/`,
+//!   each for a bounded time (60 s in `cargo xtask test`).
 //!
-//! Both install what they need first (rustup target and components, QEMU, defmt-print).
+//! They install what they need first (rustup target and components, QEMU, defmt-print).
 
 mod bench;
 mod cmd;
+mod fuzz;
 mod qemu;
 mod size;
 mod test;
@@ -50,6 +53,10 @@ enum Command {
     /// Measure every model x backend x precision (Cortex-M4 instructions under QEMU, host
     /// ns, error on the grid); write target/bench/tradeoff.json and docs/tradeoff.{md,svg}.
     Bench(bench::Args),
+    /// Build the cargo-fuzz targets (fuzz/) and run each for a bounded time on its
+    /// committed seeds; fails on any crash (installs cargo-fuzz and a C++ compiler if
+    /// missing; stable toolchain through RUSTC_BOOTSTRAP=1).
+    Fuzz(fuzz::Args),
     /// Run every check, stopping at the first failure.
     Test {
         /// Run the remaining steps after a failure instead of stopping.
@@ -78,6 +85,7 @@ fn main() -> ExitCode {
             }),
         Command::Test { keep_going } => test::run_all(keep_going),
         Command::Bench(args) => bench::run(&args),
+        Command::Fuzz(args) => fuzz::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -95,6 +95,10 @@ const STEPS: &[Step] = &[
         title: "bench-firmware: fmt, clippy, KimGrip f32 disassembly (vsqrt.f32, no soft f64), instruction count within 5 % of the baseline",
         action: crate::bench::check,
     },
+    Step {
+        title: "fuzz: every cargo-fuzz target for 60 s on its seed corpus (stable toolchain, RUSTC_BOOTSTRAP=1), no crash",
+        action: crate::fuzz::check,
+    },
 ];
 
 /// The link-time no-panic proof: the shipped configuration (release profile: opt-level

@@ -1,6 +1,7 @@
 //! Installs what the checks need, only when it is missing (idempotent and silent when
 //! everything is present): the Cortex-M target and clippy/rustfmt through rustup,
-//! QEMU through apt, defmt-print and flip-link through `cargo install`.
+//! QEMU and a C++ compiler through apt, defmt-print, flip-link and cargo-fuzz through
+//! `cargo install`.
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -107,29 +108,7 @@ pub fn ensure_qemu() -> Result {
         return Ok(());
     }
     println!("xtask: qemu-system-arm not found; installing the Debian package qemu-system-arm");
-    if probe(Command::new("apt-get").arg("--version")).is_none() {
-        return Err(Failure::new(
-            "qemu-system-arm is missing and apt-get is not available: install QEMU (qemu-system-arm) by hand",
-        ));
-    }
-    let sudo: Vec<&'static str> = if is_root() {
-        vec![]
-    } else if probe(Command::new("sudo").arg("--version")).is_some() {
-        // Without a terminal nobody can type a password: fail instead of hanging.
-        if std::io::stdin().is_terminal() {
-            vec!["sudo"]
-        } else {
-            vec!["sudo", "-n"]
-        }
-    } else {
-        return Err(Failure::new(
-            "qemu-system-arm is missing and installing it needs root (no sudo found)",
-        ));
-    };
-    let apt = Apt {
-        sudo,
-        extra: Vec::new(),
-    };
+    let apt = Apt::for_missing("qemu-system-arm")?;
     apt.run(&["update"])?;
     // `--no-remove`: never trade a package the machine already has for QEMU.
     let plain = apt.run(&[
@@ -185,6 +164,64 @@ fn find_defmt_print() -> Option<PathBuf> {
         .find(|p| probe(Command::new(p).arg("--version")).is_some())
 }
 
+/// The cargo-fuzz version installed when `cargo fuzz` is missing.
+pub const CARGO_FUZZ_VERSION: &str = "0.13.2";
+
+/// `cargo fuzz` (cargo-fuzz, which builds and runs the libFuzzer targets of `fuzz/`),
+/// installed with `cargo install --locked` at [`CARGO_FUZZ_VERSION`] if missing.
+pub fn ensure_cargo_fuzz() -> Result {
+    let runs = || probe(cmd::cargo().args(["fuzz", "--version"])).is_some();
+    if runs() {
+        return Ok(());
+    }
+    println!("xtask: cargo-fuzz not found; installing it with cargo install (about a minute)");
+    cmd::run(cmd::cargo().args([
+        "install",
+        "cargo-fuzz",
+        "--locked",
+        "--version",
+        CARGO_FUZZ_VERSION,
+    ]))?;
+    if runs() {
+        Ok(())
+    } else {
+        Err(Failure::new(
+            "cargo-fuzz was installed but `cargo fuzz --version` does not run",
+        ))
+    }
+}
+
+/// A C++ compiler, which libfuzzer-sys needs to build libFuzzer from source: `$CXX`,
+/// `c++` or `g++`, else Debian's `g++` through apt (the machine may have only gcc).
+pub fn ensure_cxx() -> Result {
+    let found = || {
+        std::env::var_os("CXX")
+            .into_iter()
+            .chain(["c++".into(), "g++".into()])
+            .any(|cxx| probe(Command::new(cxx).arg("--version")).is_some())
+    };
+    if found() {
+        return Ok(());
+    }
+    println!("xtask: no C++ compiler (c++, g++) found; installing the Debian package g++ (libfuzzer-sys compiles libFuzzer)");
+    let apt = Apt::for_missing("a C++ compiler (g++)")?;
+    apt.run(&["update"])?;
+    apt.run(&[
+        "install",
+        "-y",
+        "--no-install-recommends",
+        "--no-remove",
+        "g++",
+    ])?;
+    if found() {
+        Ok(())
+    } else {
+        Err(Failure::new(
+            "g++ was installed but neither c++ nor g++ runs",
+        ))
+    }
+}
+
 /// `apt-get`, through sudo when needed, with extra `-o` options.
 struct Apt {
     sudo: Vec<&'static str>,
@@ -192,6 +229,34 @@ struct Apt {
 }
 
 impl Apt {
+    /// apt-get as root, or through sudo (non-interactive without a terminal), to install
+    /// `what`; fails, naming `what`, when there is no apt-get or no way to become root.
+    fn for_missing(what: &str) -> Result<Self> {
+        if probe(Command::new("apt-get").arg("--version")).is_none() {
+            return Err(Failure::new(format!(
+                "{what} is missing and apt-get is not available: install it by hand"
+            )));
+        }
+        let sudo: Vec<&'static str> = if is_root() {
+            vec![]
+        } else if probe(Command::new("sudo").arg("--version")).is_some() {
+            // Without a terminal nobody can type a password: fail instead of hanging.
+            if std::io::stdin().is_terminal() {
+                vec!["sudo"]
+            } else {
+                vec!["sudo", "-n"]
+            }
+        } else {
+            return Err(Failure::new(format!(
+                "{what} is missing and installing it needs root (no sudo found)"
+            )));
+        };
+        Ok(Self {
+            sudo,
+            extra: Vec::new(),
+        })
+    }
+
     fn run(&self, args: &[&str]) -> Result {
         let mut all: Vec<String> = self.sudo.iter().map(|s| s.to_string()).collect();
         all.extend(["apt-get".to_string(), "-q".to_string()]);
