@@ -869,6 +869,7 @@ fn unvalidated_queries_degrade_gracefully() {
     )
     .unwrap();
     for t in [NAN, -INF, -1.0, 0.0] {
+        assert_eq!(m.displacement_at(t), Vec3::ZERO, "{t}");
         assert_eq!(m.position_at(t), m.start, "{t}");
         assert_eq!(m.velocity_at(t), m.initial_velocity, "{t}");
         assert_eq!(m.spin_at(t), m.initial_spin, "{t}");
@@ -887,6 +888,7 @@ fn unvalidated_queries_degrade_gracefully() {
         (a, a),
     ] {
         assert_eq!(m.crossing(p, q), None, "{p:?} {q:?}");
+        assert_eq!(m.crossing_line(p, q - p), None, "{p:?} {q:?}");
     }
     let s = two_balls();
     assert_eq!(s.contact_distance(Vec3::new(NAN, 0.0, 0.0), 1), None);
