@@ -329,13 +329,13 @@ impl fmt::Display for Problem {
                 write!(
                     f,
                     " (one of {} as its only key, e.g. {{\"version\":{{}}}})",
-                    List(&Request::NAMES)
+                    List(Request::NAMES)
                 )
             }
             Problem::UnknownRequest(name) => write!(
                 f,
                 "unknown request \"{name}\", expected one of {}",
-                List(&Request::NAMES)
+                List(Request::NAMES)
             ),
             Problem::UnknownField {
                 request,
