@@ -16,12 +16,19 @@
 //! | `Ideal` | restitution loss and all friction | `max((1−e*) U_x/2 + 1.4 J, 2.5·1.4 J) / U` |
 //! | `Kim` | slip-direction turn (∝ f, anisotropy) and grip (`S₀ > s*`) | `2.5 (S₀ f (k_y−k_z)/k_y + max(0, S₀ − s*)) / U` |
 //! | `KimGrip` | second-order direction error, table-friction direction and timing | `0.06 (2.5 J f (k_y−k_z)/k_y + X) / U` |
+//! | `SeedExact` | table friction along `−x` (seed eq. (7)) instead of against the table-contact slip | `1.5 · 2.5 X λ / U + 2e-6`, `λ = μ(0) ŷ/(1 + 2.5 μ(0) ẑ)` |
 //! | `Exact` | step error (24 steps) | `0.002 (2.5 J + X) / U + 2e-6` |
 //!
-//! (`2.5 = 1/ν` turns a friction impulse into `R Δω`; `1.4` stands for `1 + μ_s + μ_ct`.)
+//! (`2.5 = 1/ν` turns a friction impulse into `R Δω`; `1.4` stands for `1 + μ_s + μ_ct`.
+//! `SeedExact`: the pressed object ball's table-contact slip leans towards `y` by
+//! `λ = |J_y|/(p + |J_z|/ν)` while it slides, `(ŷ, ẑ)` the shares of the initial slip; the
+//! neglected table friction component `X λ` spins the object ball about `x` by
+//! `R ΔΩ_x = 2.5 X λ`. Its floor is its f32 rounding, ≤ 5e-7 of U against the
+//! reference solving the seed's own physics.)
 //!
 //! Outside the calibrated domain (μ(0) > 0.12, μ_s > 0.4, e* < 0.9 or any cue-ball/table
-//! friction μ_ct, which `Kim` and `Ideal` ignore) neither `Kim` nor `KimGrip` is picked;
+//! friction μ_ct, which `Kim`, `SeedExact` and `Ideal` ignore) neither `Kim`, `KimGrip`
+//! nor `SeedExact` is picked;
 //! `Ideal`'s estimate is the size of the effects it leaves out and holds anywhere.
 
 use crate::impact::Impact;
@@ -33,29 +40,34 @@ use crate::params::Params;
 const KIM_GRIP_FACTOR: f32 = 0.06;
 const EXACT_FACTOR: f32 = 0.002;
 const EXACT_FLOOR: f32 = 2e-6;
+const SEED_EXACT_FACTOR: f32 = 1.5;
+const SEED_EXACT_FLOOR: f32 = 2e-6;
 
 /// Estimated error `max(|Δv|, R|Δω|) / U` of `model` for this scene. `Auto` returns the
 /// estimate of the tier it would pick for `tolerance`. Outside the calibrated domain
-/// (module docs) `Kim` and `KimGrip` report an infinite estimate.
+/// (module docs) `Kim`, `KimGrip` and `SeedExact` report an infinite estimate.
 pub fn error_estimate(params: &Params, impact: &Impact, model: Model) -> f32 {
     let f = Features::of(params, impact);
     match model {
         Model::Ideal => f.ideal(),
         Model::Kim => f.kim(),
         Model::KimGrip => f.kim_grip(),
+        Model::SeedExact => f.seed_exact(),
         Model::Exact => f.exact(),
         Model::Auto { tolerance } => select(params, impact, tolerance).1,
     }
 }
 
 /// The cheapest tier whose estimate meets `tolerance` (`Exact` if none does), with its
-/// estimate.
+/// estimate. Tiers are tried in the order of [`Model::ALL`] (mean cost on the
+/// Cortex-M4F, `docs/tradeoff.md`).
 pub fn select(params: &Params, impact: &Impact, tolerance: f32) -> (Model, f32) {
     let f = Features::of(params, impact);
     for (model, estimate) in [
         (Model::Ideal, f.ideal()),
         (Model::Kim, f.kim()),
         (Model::KimGrip, f.kim_grip()),
+        (Model::SeedExact, f.seed_exact()),
     ] {
         if estimate <= tolerance {
             return (model, estimate);
@@ -78,6 +90,10 @@ struct Features {
     fraction: f32,
     anisotropy: f32,
     table: f32,
+    /// Lean of the pressed object ball's table-contact slip towards `y` while it slides,
+    /// `|J_y| / (p + |J_z|/ν)` with `J ≈ μ p`: `μ ŷ / (1 + μ ẑ/ν)` (`ŷ`, `ẑ` the slip
+    /// direction's shares): the direction eq. (7) neglects.
+    table_lean: f32,
 }
 
 impl Features {
@@ -130,6 +146,12 @@ impl Features {
             stick_budget,
             fraction,
             anisotropy: (7.0 - k_z) / 7.0,
+            table_lean: if slip > 0.0 {
+                let mu = law.at(0.0);
+                (crate::math::abs(v_y) / slip) * mu / (1.0 + 2.5 * vertical_share * mu)
+            } else {
+                0.0
+            },
             table: if pressed {
                 params.mu_s() * vertical_share * impulse
             } else {
@@ -164,6 +186,15 @@ impl Features {
         }
         KIM_GRIP_FACTOR * (2.5 * self.impulse * self.fraction * self.anisotropy + self.table)
             / self.speed
+    }
+
+    fn seed_exact(&self) -> f32 {
+        if !self.calibrated {
+            // Outside the calibrated domain (and SeedExact ignores μ_ct, as the seed
+            // does): not bounded by this estimate, leave those scenes to Exact.
+            return f32::INFINITY;
+        }
+        SEED_EXACT_FACTOR * 2.5 * self.table * self.table_lean / self.speed + SEED_EXACT_FLOOR
     }
 
     fn exact(&self) -> f32 {

@@ -39,6 +39,7 @@ mod model;
 mod outcome;
 mod params;
 mod real;
+mod seed_exact;
 pub mod shot;
 pub mod strike;
 pub mod table;

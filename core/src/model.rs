@@ -19,6 +19,14 @@ pub enum Model {
     /// `Kim` plus a gripping branch (erratum E6) and a second-order slip-direction
     /// correction; continuous across the slide/grip boundary. The model to use.
     KimGrip,
+    /// The seed's exact sliding solution, eqs. (24)–(41) with erratum E1, and a stick
+    /// branch (`seed_exact` module): the seed's integrals by 8-point Gauss–Legendre
+    /// quadrature, compression end and impact end by bracketed Newton solves. Exact for
+    /// the seed's physics, whose object-ball table friction points along `−x` (eq. (7)):
+    /// up to ~0.4 % of U from the first-principles result when the object ball is pressed
+    /// (topspin), within quadrature error otherwise. Ignores `μ_ct`, as the seed does.
+    /// May return [`Error::NumericalFailure`] if a root solve fails (never observed).
+    SeedExact,
     /// The full rigid-body impact integrated in fixed memory (`exact` module): the
     /// reference solver's physics at a fixed step count. Slowest, most accurate.
     Exact,
@@ -33,14 +41,21 @@ pub enum Model {
 
 impl Model {
     /// Every model, cheapest first.
-    pub const ALL: [Model; 4] = [Model::Ideal, Model::Kim, Model::KimGrip, Model::Exact];
+    pub const ALL: [Model; 5] = [
+        Model::Ideal,
+        Model::Kim,
+        Model::KimGrip,
+        Model::SeedExact,
+        Model::Exact,
+    ];
 
-    /// Lower-case, hyphenated name (`ideal`, `kim`, `kim-grip`).
+    /// Lower-case, hyphenated name (`ideal`, `kim`, `kim-grip`, `seed-exact`, `exact`).
     pub const fn name(self) -> &'static str {
         match self {
             Model::Ideal => "ideal",
             Model::Kim => "kim",
             Model::KimGrip => "kim-grip",
+            Model::SeedExact => "seed-exact",
             Model::Exact => "exact",
             Model::Auto { .. } => "auto",
         }
@@ -79,6 +94,7 @@ pub fn collide_in<R: Real>(params: &Params, impact: &Impact, model: Model) -> Re
         Model::Ideal => crate::ideal::collide::<R>(params, impact),
         Model::Kim => crate::kim::collide::<R>(params, impact),
         Model::KimGrip => crate::kim_grip::collide::<R>(params, impact),
+        Model::SeedExact => crate::seed_exact::collide::<R>(params, impact)?,
         Model::Exact => crate::exact::collide::<R>(params, impact),
         Model::Auto { tolerance } => {
             crate::error::check(Field::Tolerance, tolerance, 0.0, 1.0, true)?;

@@ -23,6 +23,15 @@ pub trait Real:
     const ONE: Self;
     /// Widen (or keep) an `f32`.
     fn of(x: f32) -> Self;
+    /// Round (or keep) an `f64` constant, e.g. a quadrature node, so that each
+    /// precision gets the constant to its own resolution.
+    fn of_f64(x: f64) -> Self {
+        Self::of(x as f32)
+    }
+    /// Machine epsilon (spacing of the values just above 1), for relative tolerances.
+    fn epsilon() -> Self {
+        Self::of(f32::EPSILON)
+    }
     /// Round to `f32`.
     fn to_f32(self) -> f32;
     /// Square root.
@@ -99,6 +108,14 @@ impl Real for f64 {
     #[inline(always)]
     fn of(x: f32) -> Self {
         x as f64
+    }
+    #[inline(always)]
+    fn of_f64(x: f64) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn epsilon() -> Self {
+        f64::EPSILON
     }
     #[inline(always)]
     fn to_f32(self) -> f32 {

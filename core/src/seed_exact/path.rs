@@ -1,0 +1,410 @@
+//! The seed's sliding path, eqs. (23)–(30) with erratum E1, and its integrals by
+//! fixed-order Gauss–Legendre quadrature.
+//!
+//! Per unit mass (impulses in m/s; the seed's `p/m` with `m = M/2` is `2p` here). While
+//! the contact slides, with the object ball's table friction along `−x` (seed eq. (7)),
+//! the tangential slip obeys seed eq. (23) with E1:
+//!
+//! `dv_y/dp = −k_y μ v_y/|v|`, `dv_z/dp = −k_z μ v_z/|v|`,
+//! `k_y = 2β_y = 2(1+ν)/ν = 7`, `k_z = 2β_z = (2+ν−μ_s)/ν` when the object ball is pressed
+//! (`v_z0 > 0`, topspin), `(2+ν)/ν = 6` otherwise (dimensionless).
+//!
+//! Hence `d ln|v_y| / d ln|v_z| = k_y/k_z`: the invariant (24). We parametrise its curve
+//! by `ρ ∈ (0, 1]` (ρ = 1 at first contact, 0 where the slip stops):
+//!
+//! `v_y = v_y0 ρ^{k_y}`, `v_z = v_z0 ρ^{k_z}`, `|v| = |v₀| ρ g(ρ)`,
+//! `g(ρ) = √(c_y² ρ¹² + c_z² ρ^{2k_z−2})`, `(c_y, c_z) = v₀/|v₀|`.
+//!
+//! The seed's variables (26) are `x_k = |v_k/v̄| = x_k0 ρ^{k_k}` (with E1
+//! `a_z = k_z/(2(k_y−k_z)) = (2+ν−μ_s)/(2(ν+μ_s))`, `a_y = −k_y/(2(k_y−k_z))`), and its
+//! eq. (27) `√(1 + x_k^{1/a_k}) dx_k = −μ β_k dp/(m v̄)` becomes `dp = |v₀| g(ρ) dρ / μ`.
+//! So the seed's integrals (29)–(30) and the `F_{2a_z}(x_z²)` term of (33) are
+//!
+//! * `P(ρ) = ∫_ρ^1 |v₀| g(s)/μ ds` — normal impulse (m/s) at which the slip reaches `ρ`
+//!   (eq. (29): `F_{a_z}(x_z0) − F_{a_z}(x_z) = (k_z|v₀|/v̄) ∫_ρ^1 g`);
+//! * `I_z(ρ) = ∫_0^{P} v_z dp = ∫_ρ^1 |v₀|² c_z s^{k_z} g(s)/μ ds` (m²/s²) — the
+//!   `M v̄² [F_{2a_z}(x_z²) − F_{2a_z}(x_z0²)]/(4μβ_z)` of eqs. (33), (36).
+//!
+//! Why not the seed's variable `x`: `v̄` is 0 or ∞ when either slip component is zero
+//! (head-on top/draw, pure side spin), and `√(1 + x^{1/a})` has an unbounded derivative at
+//! `x → 0` (`1/a_z < 1`), which ruins any fixed-order rule near the stick point. In `ρ`
+//! the integrand is `ρ^{k_z−1} √(c_y² ρ^{2(k_y−k_z)} + c_z²)`: bounded, smooth on
+//! `(0, 1]`, every case alike.
+//!
+//! A speed-dependent law `μ(|v|)` (TP A.14) keeps the path — `μ` scales both rates of
+//! (23) alike, so (24) holds — and only moves along it at another pace: `1/μ` becomes
+//! `1/μ(|v₀| ρ g(ρ))` inside both integrals.
+//!
+//! **Quadrature.** Gauss–Legendre with [`NODES`] = 8 nodes on `[ρ, 1]` (exact for
+//! polynomials of degree 15). Its error, against a 64-panel composite of the same rule
+//! graded towards `ρ = 0` (test `quadrature_error_is_below_its_stated_bound`, f64, 181
+//! slip directions including the axes, `μ_s` 0–0.4, `1 − ρ` from 1e-6 to 1):
+//! `|δ∫g| ≤ 2e-8` and `|δ∫c_z ρ^{k_z} g| ≤ 1e-9`, where `∫g ≥ (1 − ρ⁷)/7`; for `μ_s`
+//! up to 1 (a non-integer power `ρ^{k_z−1}` as low as `ρ^{2.5}` at the stick point)
+//! `≤ 6.6e-7`. Relative to `|v₀|/μ` that is below f32 resolution in the calibrated
+//! domain. A speed-dependent law needs more: [`SPEED_DEPENDENT_PANELS`] = 4 panels of 8
+//! nodes, relative error ≤ 2.2e-6 for both TP A.14 fits at `c|v₀| ≤ 22` (slips up to
+//! 20 m/s, measured offline against the same composite rule); the error grows with
+//! `c|v₀|` beyond that.
+
+use crate::friction::FrictionLaw;
+use crate::real::Real;
+
+/// Gauss–Legendre nodes per panel.
+pub(super) const NODES: usize = 8;
+
+/// Panels for a speed-dependent friction law (one for a constant μ).
+pub(super) const SPEED_DEPENDENT_PANELS: usize = 4;
+
+/// 8-point Gauss–Legendre rule mapped to `[0, 1]`: `(t_i, w_i)` with
+/// `∫_0^1 f ≈ Σ w_i f(t_i)`; nodes `t = (1 − x)/2`, weights `w/2` of the rule on
+/// `[−1, 1]`.
+const RULE: [(f64, f64); NODES] = [
+    (0.019_855_071_751_231_856, 0.050_614_268_145_188_39),
+    (0.101_666_761_293_186_58, 0.111_190_517_226_687_23),
+    (0.237_233_795_041_835_5, 0.156_853_322_938_943_7),
+    (0.408_282_678_752_175_1, 0.181_341_891_689_181),
+    (0.591_717_321_247_824_8, 0.181_341_891_689_181),
+    (0.762_766_204_958_164_5, 0.156_853_322_938_943_7),
+    (0.898_333_238_706_813_5, 0.111_190_517_226_687_23),
+    (0.980_144_928_248_768_2, 0.050_614_268_145_188_39),
+];
+
+/// `k_y = 2(1+ν)/ν` for `ν = 2/5` (seed eq. (28): `2β_y`).
+pub(super) const K_Y: f32 = 7.0;
+
+/// The sliding path of one impact, normalised by the initial slip speed.
+pub(super) struct SlipPath<R> {
+    /// `|v₀|` (m/s).
+    pub speed: R,
+    /// `v_z0` (m/s).
+    pub slip_z: R,
+    /// `c_y² = (v_y0/|v₀|)²`, `c_z = v_z0/|v₀|`.
+    cy2: R,
+    cz: R,
+    /// `ε = 6 − k_z = μ_s/ν` when the object ball is pressed, else 0 (then every power
+    /// is an integer one and no transcendental function is needed).
+    lean: R,
+    /// `k_z = 2β_z` (E1).
+    pub k_z: R,
+    /// `κ`: the root solves' variable is `w = 1 − ρ^κ`, in which `P` and `X` are nearly
+    /// linear: `κ = k_z` (`v_z` outlives `v_y`, as `k_z < k_y`, so near the stick point
+    /// `P* − P ∝ ρ^{k_z}`, and `X ∝ 1 − ρ^{k_z}` exactly), `κ = k_y` for a pure side slip
+    /// (then `P ∝ 1 − ρ⁷` exactly).
+    pub kappa: R,
+    law: FrictionLaw,
+}
+
+/// Where the slip is after the normal impulse that brings it to `ρ = 1 − q`.
+#[derive(Clone, Copy)]
+pub(super) struct Point<R> {
+    /// `q = 1 − ρ`, in `[0, 1]`.
+    pub q: R,
+    /// `P`: normal impulse so far (m/s).
+    pub normal: R,
+    /// `I_z = ∫ v_z dp` so far (m²/s²).
+    pub vertical: R,
+    /// `dP/dw` (m/s), `w = 1 − ρ^κ`: finite at the stick point.
+    pub slope_w: R,
+    /// `ρ^{k_y} − 1`: `v_y = v_y0 (1 + this)`, so the friction impulse is
+    /// `J_y = v_y0 · this / k_y` (seed eq. (57)).
+    pub y_change: R,
+    /// `ρ^{k_z} − 1`: `J_z = v_z0 · this / k_z`.
+    pub z_change: R,
+}
+
+impl<R: Real> SlipPath<R> {
+    /// The path from the initial slip `(v_y0, v_z0)` (m/s, not both zero), with the
+    /// object ball's table friction `μ_s` acting when it is pressed (`v_z0 > 0`).
+    pub fn new(slip_y: R, slip_z: R, mu_s: R, law: FrictionLaw) -> Self {
+        let scale = R::max(R::abs(slip_y), R::abs(slip_z));
+        let (y, z) = (slip_y / scale, slip_z / scale);
+        let norm = R::sqrt(y * y + z * z);
+        let (cy, cz) = (y / norm, z / norm);
+        // ν = 2/5: k_z = (2 + ν − μ_s)/ν = 6 − μ_s/ν.
+        let lean = if slip_z > R::ZERO {
+            mu_s * R::of(2.5)
+        } else {
+            R::ZERO
+        };
+        let k_z = R::of(6.0) - lean;
+        Self {
+            speed: norm * scale,
+            slip_z,
+            cy2: cy * cy,
+            cz,
+            lean,
+            k_z,
+            kappa: if cz == R::ZERO { R::of(K_Y) } else { k_z },
+            law,
+        }
+    }
+
+    /// Largest μ on the path: at zero slip (the laws do not increase with speed).
+    pub fn mu_max(&self) -> R {
+        self.law.at_in(R::ZERO)
+    }
+
+    /// Smallest μ on the path: at the initial slip speed `|v₀|`.
+    pub fn mu_min(&self) -> R {
+        self.law.at_in(self.speed)
+    }
+
+    /// `|v₀|/μ_min`, the largest `dP/dq` (m/s); infinite when μ is so small that
+    /// the friction cannot change the slip in this precision.
+    pub fn max_pace(&self) -> R {
+        self.speed / self.mu_min()
+    }
+
+    /// `μ` at slip speed `|v|` (m/s).
+    fn mu(&self, slip_speed: R) -> R {
+        self.law.at_in(slip_speed)
+    }
+
+    /// `dP/dw = (|v₀|/μ) g dq/dw`, `dq/dw = ρ^{1−κ}/κ`, from `ρ`, `τ = ρ^ε` and
+    /// `pace = |v₀|/μ` (m/s): `g ρ^{1−k_z} = √(c_y² ρ² τ² + c_z²)` for `κ = k_z`, and
+    /// `g ρ^{−6} = 1` for a pure side slip.
+    fn slope_w(&self, rho: R, tau: R, pace: R) -> R {
+        if self.cz == R::ZERO {
+            pace / self.kappa
+        } else {
+            let inner = self.cy2 * rho * rho * tau * tau + self.cz * self.cz;
+            pace * R::sqrt(inner) / self.kappa
+        }
+    }
+
+    /// `g(ρ)` and `ρ^{k_z−1}` from `ρ` and `τ = ρ^ε`.
+    fn g(&self, rho: R, tau: R) -> (R, R) {
+        let rho2 = rho * rho;
+        let z_rate = rho2 * rho2 * rho / tau; // ρ^{5−ε} = ρ^{k_z−1}
+        let inner = self.cy2 * rho2 * tau * tau + self.cz * self.cz;
+        (z_rate * R::sqrt(inner), z_rate)
+    }
+
+    /// `ρ^ε` at a node, `ε = μ_s/ν`.
+    fn lean_power(&self, rho: R) -> R {
+        if self.lean == R::ZERO {
+            R::ONE
+        } else {
+            R::exp(self.lean * R::ln(rho))
+        }
+    }
+
+    /// `(∫ g/μ, ∫ c_z (ρ^{k_z} − z_ref) g/μ)` over `ρ ∈ [1 − to, 1 − from]`,
+    /// dimensionless but for a constant `1/μ` (applied by the caller).
+    fn integrals(&self, from: R, to: R, z_ref: R) -> (R, R) {
+        let panels = match self.law {
+            FrictionLaw::Constant(_) => 1,
+            FrictionLaw::SpeedDependent { .. } => SPEED_DEPENDENT_PANELS,
+        };
+        let width = (to - from) / R::of(panels as f32);
+        let (mut normal, mut vertical) = (R::ZERO, R::ZERO);
+        for panel in 0..panels {
+            // Panel k: nodes ρ = 1 − (from + (k + t) w).
+            let start = R::of(panel as f32);
+            let (mut n, mut v) = (R::ZERO, R::ZERO);
+            for &(t, w) in RULE.iter() {
+                let rho = R::ONE - (from + (start + R::of_f64(t)) * width);
+                let tau = self.lean_power(rho);
+                let (g, z_rate) = self.g(rho, tau);
+                let inverse_mu = match self.law {
+                    FrictionLaw::Constant(_) => R::ONE,
+                    FrictionLaw::SpeedDependent { .. } => R::ONE / self.mu(self.speed * rho * g),
+                };
+                let weight = R::of_f64(w) * inverse_mu;
+                n = n + weight * g;
+                // ρ^{k_z} = ρ · ρ^{k_z−1}.
+                v = v + weight * self.cz * (rho * z_rate - z_ref) * g;
+            }
+            normal = normal + n;
+            vertical = vertical + v;
+        }
+        (normal * width, vertical * width)
+    }
+
+    /// `(P, ∫ (v_z − v_z,ref) dp)` (m/s, m²/s²) between `q = from` and `q = to`, with
+    /// `v_z,ref = v_z0 z_ref`.
+    fn impulses_between(&self, from: R, to: R, z_ref: R) -> (R, R) {
+        let (normal, vertical) = self.integrals(from, to, z_ref);
+        // |v₀|/μ first: at a subnormal μ the reciprocal alone would overflow.
+        let pace = match self.law {
+            FrictionLaw::Constant(mu) => self.speed / R::of(mu),
+            FrictionLaw::SpeedDependent { .. } => self.speed,
+        };
+        (pace * normal, self.speed * (pace * vertical))
+    }
+
+    /// `q = 1 − ρ` for `w = 1 − ρ^κ` (both in `[0, 1]`), without cancellation near 0.
+    pub fn q_of_w(&self, w: R) -> R {
+        if w >= R::ONE {
+            R::ONE
+        } else {
+            -R::exp_m1(R::ln_1p(-w) / self.kappa)
+        }
+    }
+
+    /// `w = 1 − ρ^κ` where `ρ^{k_y} = 1 − ratio` (`ratio < 1`).
+    pub fn w_of_y_ratio(&self, ratio: R) -> R {
+        -R::exp_m1(self.kappa / R::of(K_Y) * R::ln_1p(-ratio))
+    }
+
+    /// The state after the slip has slid from contact to `ρ = 1 − q` (`q ∈ [0, 1]`).
+    pub fn point(&self, q: R) -> Point<R> {
+        let (normal, vertical) = self.impulses_between(R::ZERO, q, R::ZERO);
+        self.at(q, normal, vertical)
+    }
+
+    /// The state at `q ≥ c.q`, with the impulses integrated from `c` (so that their
+    /// differences keep their digits), and `∫_{c}^{q} (v_z − v_z(c)) dp` (m²/s²): the
+    /// table term of the work since `c`, seed eq. (36).
+    pub fn point_after(&self, c: &Point<R>, q: R) -> (Point<R>, R) {
+        let (normal, lag) = self.impulses_between(c.q, q, R::ONE + c.z_change);
+        let vertical = c.vertical + lag + self.slip_z * (R::ONE + c.z_change) * normal;
+        (self.at(q, c.normal + normal, vertical), lag)
+    }
+
+    /// The slip state at `ρ = 1 − q` with the impulses given.
+    fn at(&self, q: R, normal: R, vertical: R) -> Point<R> {
+        if q >= R::ONE {
+            // The slip has stopped: ρ = 0.
+            return Point {
+                q: R::ONE,
+                normal,
+                vertical,
+                slope_w: self.slope_w(R::ZERO, R::ZERO, self.speed / self.mu_max()),
+                y_change: -R::ONE,
+                z_change: -R::ONE,
+            };
+        }
+        let rho = R::ONE - q;
+        // ρ^n − 1 = −q (1 + ρ + … + ρ^{n−1}): no cancellation for small q.
+        let mut sum6 = R::ZERO;
+        let mut power = R::ONE;
+        for _ in 0..6 {
+            sum6 = sum6 + power;
+            power = power * rho;
+        }
+        let rho6_minus_1 = -q * sum6;
+        // ρ⁷ − 1.
+        let y_change = -q * (sum6 + power);
+        // τ = ρ^ε. Near contact (q < 1/2) τ − 1 = expm1(ε ln(1 − q)) and
+        // ρ^{k_z} − 1 = (ρ⁶ − 1 − (τ − 1))/τ keep their digits; nearer the stick point
+        // τ itself must (it may be tiny), and ρ^{k_z} − 1 has no cancellation.
+        let (tau, z_change) = if self.lean == R::ZERO {
+            (R::ONE, rho6_minus_1)
+        } else if q < R::of(0.5) {
+            let tau_minus_1 = R::exp_m1(self.lean * R::ln_1p(-q));
+            let tau = R::ONE + tau_minus_1;
+            (tau, (rho6_minus_1 - tau_minus_1) / tau)
+        } else {
+            let tau = R::exp(self.lean * R::ln(rho));
+            (tau, power / tau - R::ONE) // power = ρ⁶
+        };
+        let pace = match self.law {
+            FrictionLaw::Constant(mu) => self.speed / R::of(mu),
+            FrictionLaw::SpeedDependent { .. } => {
+                let (g, _) = self.g(rho, tau);
+                self.speed / self.mu(self.speed * rho * g)
+            }
+        };
+        Point {
+            q,
+            normal,
+            vertical,
+            slope_w: self.slope_w(rho, tau, pace),
+            y_change,
+            z_change,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rule_integrates_degree_15_exactly() {
+        for degree in 0..=15 {
+            let sum: f64 = RULE.iter().map(|&(t, w)| w * t.powi(degree)).sum();
+            let exact = 1.0 / (degree as f64 + 1.0);
+            assert!((sum - exact).abs() < 1e-15, "degree {degree}: {sum}");
+        }
+    }
+
+    /// `(∫g, ∫c_z ρ^{k_z} g)` over `[1 − q, 1]` by 64 panels of the 8-point rule,
+    /// graded (`(i/64)²`) towards `ρ = 0` where the non-integer powers live.
+    fn composite(cy: f64, cz: f64, k_z: f64, q: f64) -> (f64, f64) {
+        let lo = 1.0 - q;
+        let edge = |i: usize| lo + q * (i as f64 / 64.0).powi(2);
+        let (mut n, mut v) = (0.0, 0.0);
+        for i in 0..64 {
+            let (a, b) = (edge(i), edge(i + 1));
+            for &(t, w) in RULE.iter() {
+                let rho: f64 = a + (b - a) * t;
+                let g = (cy * cy * rho.powi(12) + cz * cz * rho.powf(2.0 * k_z - 2.0)).sqrt();
+                n += w * (b - a) * g;
+                v += w * (b - a) * cz * rho.powf(k_z) * g;
+            }
+        }
+        (n, v)
+    }
+
+    #[test]
+    fn quadrature_error_is_below_its_stated_bound() {
+        let mu = 0.05f32;
+        let (mut worst_n, mut worst_v) = (0.0f64, 0.0f64);
+        for step in 0..=180 {
+            let angle = (step as f64 - 90.0).to_radians() * 2.0; // −π..π
+            let (cy, cz) = (angle.cos(), angle.sin());
+            for mu_s in [0.0, 0.1, 0.2, 0.3, 0.4] {
+                let path = SlipPath::<f64>::new(cy, cz, mu_s, FrictionLaw::Constant(mu));
+                for q in [1e-6, 1e-3, 0.1, 0.5, 0.9, 1.0] {
+                    let p = path.point(q);
+                    let scale = mu as f64; // P = (|v₀|/μ) ∫g with |v₀| = 1
+                    let (n, v) = composite(cy, cz, path.k_z, q);
+                    worst_n = worst_n.max((p.normal * scale - n).abs());
+                    worst_v = worst_v.max((p.vertical * scale - v).abs());
+                }
+            }
+        }
+        assert!(worst_n <= 2e-8, "∫g: {worst_n:e}");
+        assert!(worst_v <= 1e-9, "∫c_z ρ^k g: {worst_v:e}");
+    }
+
+    #[test]
+    fn pure_side_slip_is_a_polynomial() {
+        // v_z0 = 0: g = ρ⁶, P(ρ) = |v₀| (1 − ρ⁷)/(7μ) exactly.
+        let path = SlipPath::<f64>::new(-1.5, 0.0, 0.3, FrictionLaw::Constant(0.05));
+        for q in [1e-6, 0.3, 1.0] {
+            let p = path.point(q);
+            let exact = 1.5 * (1.0 - (1.0 - q).powi(7)) / (7.0 * 0.05f32 as f64);
+            // (1 − q)⁷ loses ~1e-10 of 1 − (1 − q)⁷ to cancellation at q = 1e-6.
+            assert!((p.normal - exact).abs() < 1e-9 * exact, "{q}: {}", p.normal);
+            assert!(p.vertical == 0.0);
+        }
+    }
+
+    #[test]
+    fn head_on_topspin_follows_k_z() {
+        // v_y0 = 0: g = ρ^{k_z − 1}, P(ρ) = |v₀| (1 − ρ^{k_z})/(k_z μ),
+        // I_z = |v₀|² (1 − ρ^{2k_z})/(2 k_z μ).
+        let (mu_s, mu) = (0.3f64, 0.05f32);
+        let path = SlipPath::<f64>::new(0.0, 2.0, mu_s, FrictionLaw::Constant(mu));
+        let (k_z, mu) = ((2.4 - mu_s) / 0.4, mu as f64);
+        for q in [1e-4, 0.5, 1.0] {
+            let rho: f64 = 1.0 - q;
+            let p = path.point(q);
+            let normal = 2.0 * (1.0 - rho.powf(k_z)) / (k_z * mu);
+            let vertical = 4.0 * (1.0 - rho.powf(2.0 * k_z)) / (2.0 * k_z * mu);
+            // Non-integer power ρ^{4.25} at ρ → 0 (q = 1): the quadrature's measured
+            // bound, 2e-8 of ∫g ≥ 1/7.
+            assert!(
+                (p.normal - normal).abs() < 1.5e-7 * normal,
+                "{q}: {}",
+                p.normal
+            );
+            assert!((p.vertical - vertical).abs() < 1.5e-7 * vertical, "{q}");
+            assert!((p.z_change - (rho.powf(k_z) - 1.0)).abs() < 1e-14);
+        }
+    }
+}

@@ -1,0 +1,153 @@
+//! Bounded, bracketed root solve: Newton's method safeguarded by bisection.
+//!
+//! For an increasing function `f` with `f(lo) ≤ 0 ≤ f(hi)` (the caller establishes the
+//! bracket, from values it computed or from a proven bound), each step evaluates
+//! `(f(x), f'(x))` once, shrinks the bracket by the sign of `f(x)`, and moves to the
+//! Newton point when it lies inside the bracket, otherwise to the midpoint. It returns
+//! the last evaluated point when
+//!
+//! * `|f(x)|` is within the caller's `residual` — the rounding level of `f`, below which
+//!   the root is not determined in this precision — or
+//! * the Newton step is within [`TOLERANCE_EPSILONS`] machine epsilons of `x`, or
+//! * the bracket is that narrow;
+//!
+//! and fails with [`Error::NumericalFailure`] after [`MAX_EVALUATIONS`] or on a NaN. It
+//! never panics.
+
+use crate::error::{Error, Result};
+use crate::real::Real;
+
+/// Evaluations at most: bisection alone narrows `[0, 1]` to `2⁻⁶⁴`, below f64's
+/// tolerance; Newton from the first-order guess takes a few (measured on the grid, see
+/// `docs/physics.md` §7).
+pub(super) const MAX_EVALUATIONS: usize = 64;
+
+/// Relative stopping tolerance on `x`, in machine epsilons of the evaluation precision.
+const TOLERANCE_EPSILONS: f32 = 2.0;
+
+/// One evaluation: `f(x)`, `f'(x)` (zero or non-finite: no Newton step), and what the
+/// caller wants back at the root.
+pub(super) struct Sample<R, T> {
+    pub value: R,
+    pub slope: R,
+    pub payload: T,
+}
+
+/// The root of the increasing `f` in `[lo, hi]`, starting at `guess` (clamped into the
+/// bracket), accepted where `|f| ≤ residual`: the last evaluated `x` and its payload.
+pub(super) fn increasing_root<R: Real, T>(
+    mut f: impl FnMut(R) -> Sample<R, T>,
+    mut lo: R,
+    mut hi: R,
+    guess: R,
+    residual: R,
+) -> Result<(R, T)> {
+    let ordered = lo <= hi;
+    if !ordered {
+        return Err(Error::NumericalFailure);
+    }
+    let tolerance = R::of(TOLERANCE_EPSILONS) * R::epsilon();
+    // The ends may be roots themselves (a bound can be tight); they may be tried as long
+    // as they have not been evaluated.
+    let (mut lo_tried, mut hi_tried) = (false, false);
+    let inside = |x: R, lo: R, hi: R, lo_tried: bool, hi_tried: bool| {
+        (x > lo && x < hi) || (x == lo && !lo_tried) || (x == hi && !hi_tried)
+    };
+    let mut x = if inside(guess, lo, hi, false, false) {
+        guess
+    } else {
+        R::of(0.5) * (lo + hi)
+    };
+    for _ in 0..MAX_EVALUATIONS {
+        let Sample {
+            value,
+            slope,
+            payload,
+        } = f(x);
+        if value.partial_cmp(&R::ZERO).is_none() {
+            return Err(Error::NumericalFailure); // NaN
+        }
+        if R::abs(value) <= residual {
+            return Ok((x, payload));
+        }
+        if value < R::ZERO {
+            lo = x;
+            lo_tried = true;
+        } else {
+            hi = x;
+            hi_tried = true;
+        }
+        let scale = R::abs(x) * tolerance;
+        if hi - lo <= scale {
+            return Ok((x, payload));
+        }
+        let step = value / slope; // ±inf or NaN when the slope is 0 or not finite
+                                  // A Newton point past an end not yet tried goes to that end (a tight bound).
+        let newton = match x - step {
+            n if n > hi && !hi_tried => hi,
+            n if n < lo && !lo_tried => lo,
+            n => n,
+        };
+        if slope > R::ZERO && inside(newton, lo, hi, lo_tried, hi_tried) {
+            if R::abs(step) <= scale {
+                return Ok((x, payload));
+            }
+            x = newton;
+        } else {
+            x = R::of(0.5) * (lo + hi);
+        }
+    }
+    Err(Error::NumericalFailure)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample(x: f64, value: f64, slope: f64) -> Sample<f64, f64> {
+        Sample {
+            value,
+            slope,
+            payload: x,
+        }
+    }
+
+    #[test]
+    fn finds_a_root_quadratically() {
+        let mut calls = 0;
+        let (x, at) = increasing_root(
+            |x: f64| {
+                calls += 1;
+                sample(x, x * x * x - 0.125, 3.0 * x * x)
+            },
+            0.0,
+            1.0,
+            0.6,
+            0.0,
+        )
+        .unwrap();
+        assert!((x - 0.5).abs() < 1e-14 && at == x);
+        assert!(calls <= 8, "{calls}");
+    }
+
+    #[test]
+    fn falls_back_to_bisection_without_a_slope() {
+        let (x, _) = increasing_root(|x: f64| sample(x, x - 0.3, 0.0), 0.0, 1.0, 0.9, 0.0).unwrap();
+        assert!((x - 0.3).abs() < 1e-13);
+    }
+
+    #[test]
+    fn reports_failure_instead_of_nan() {
+        let nan = increasing_root(|x: f64| sample(x, f64::NAN, 1.0), 0.0, 1.0, 0.5, 0.0);
+        assert_eq!(nan.unwrap_err(), Error::NumericalFailure);
+        let empty = increasing_root(|x: f64| sample(x, x, 1.0), 1.0, 0.0, 0.5, 0.0);
+        assert_eq!(empty.unwrap_err(), Error::NumericalFailure);
+    }
+
+    #[test]
+    fn a_root_near_the_lower_end_is_found_to_relative_precision() {
+        let (x, _) =
+            increasing_root(|x: f64| sample(x, x - 1e-12, 1.0), 0.0, 1.0, 0.5, 0.0).unwrap();
+        assert!((x - 1e-12).abs() < 1e-24, "{x}");
+    }
+}
