@@ -18,8 +18,9 @@
 //!    of `common::precision_allowance`.
 //!
 //! The closed forms (`Ideal`, `Kim`, `KimGrip`) run 1,000,000 cases, `Exact` and `Auto`
-//! 500,000; seeds are fixed (deterministic CI; `PROPTEST_RNG_SEED` / `PROPTEST_CASES`
-//! override), failures are persisted to `tests/properties.proptest-regressions`.
+//! 500,000, `SeedExact` (quadrature and root solves, ~7 s) 200,000; seeds are fixed
+//! (deterministic CI; `PROPTEST_RNG_SEED` / `PROPTEST_CASES` override), failures are
+//! persisted to `tests/properties.proptest-regressions`.
 //! Run with `-- --nocapture` to see the figures (largest deviations found).
 
 mod common;
@@ -33,6 +34,7 @@ use std::cell::RefCell;
 
 const CLOSED_FORM_CASES: u32 = 1_000_000;
 const INTEGRATED_CASES: u32 = 500_000;
+const SEED_EXACT_CASES: u32 = 200_000;
 
 #[derive(Default, Debug)]
 struct Worst {
@@ -258,6 +260,18 @@ fn exact_and_auto_hold_on_the_valid_domain() {
         ],
     );
     report("exact and auto", &figures);
+}
+
+#[test]
+fn seed_exact_holds_on_the_valid_domain() {
+    let figures = run(
+        "seed_exact_holds_on_the_valid_domain",
+        SEED_EXACT_CASES,
+        0x6375_6573_6967_6804,
+        case(),
+        &[|_| Model::SeedExact],
+    );
+    report("seed exact", &figures);
 }
 
 /// The same properties inside the region carved out of the domain above: a
