@@ -335,8 +335,8 @@ pub struct Flags {
     /// Solve the aim that pockets the object ball (ignores an aim in the file).
     #[arg(long)]
     pub solve: bool,
-    /// Collision model: ideal, kim, kim-grip, exact, or auto (the cheapest tier within
-    /// 1e-3) [default: auto].
+    /// Collision model: ideal, kim, kim-grip, seed-exact, exact, or auto (the cheapest
+    /// tier within 1e-3) [default: auto].
     #[arg(long, value_name = "NAME", value_parser = parse_model)]
     pub model: Option<Model>,
     /// Ball–ball friction μ [default: 0.05].
