@@ -363,6 +363,26 @@ fn targets(report: &Value) -> String {
             ));
         }
     }
+    if let Some(row) = find(report, "seed-exact", "f32", "libm") {
+        let max = row["instructions"]["release"]["max"].as_f64();
+        let worst = row["error"]["all"]["max"]["velocity"].as_f64();
+        if let (Some(max), Some(worst)) = (max, worst) {
+            md.push_str(&format!(
+                "- `SeedExact` (the seed's closed sliding solution, eqs. (24)–(41) with \
+                 erratum E1, and a stick branch) ≤ {} instructions: {} at most, {} on \
+                 average — {}. Against this (vector) reference it is off by up to {} % of U: \
+                 the seed's eq. (7) points the object ball's table friction along −x, which \
+                 the tier keeps; against the reference solving that same physics it agrees to \
+                 its quadrature and rounding (`host-tests/tests/seed_exact.rs`, \
+                 `docs/physics.md` §7).\n",
+                instructions(EXACT_TARGET),
+                instructions(max),
+                opt(&row["instructions"]["release"]["mean"], instructions),
+                verdict(max <= EXACT_TARGET),
+                sig3(100.0 * worst),
+            ));
+        }
+    }
     let host = &report["host"];
     if let Some(ratio) = host["reference_over_kim_grip"].as_f64() {
         md.push_str(&format!(
