@@ -88,7 +88,7 @@ const STEPS: &[Step] = &[
         action: end_to_end,
     },
     Step {
-        title: "firmware with the shot request (--features shot): size, end-to-end shot test in QEMU",
+        title: "firmware with the shot request (--features shot): size, no-panic proof, end-to-end shot test in QEMU",
         action: shot_image,
     },
     Step {
@@ -196,8 +196,8 @@ fn end_to_end() -> Result {
 }
 
 /// The image with the protocol's `shot` request (`--features shot`, its own target
-/// directory): built, its size reported against the budgets (it is over the flash
-/// budget, which is why the default image leaves it out), and `host-tests/tests/
+/// directory): built, its size reported (it is over the flash budget, which is why the
+/// default image leaves it out), its no-panic proof linked, and `host-tests/tests/
 /// e2e_shot.rs` run against it under QEMU.
 fn shot_image() -> Result {
     let target_dir = "target/shot";
@@ -215,6 +215,15 @@ fn shot_image() -> Result {
         .join("release")
         .join("cuesight-firmware");
     size::report(&elf)?;
+    // The no-panic proof for this image too.
+    cargo_in_firmware(&[
+        "build",
+        "--release",
+        "--features",
+        "shot,panic-never",
+        "--target-dir",
+        "target/panic-never-shot",
+    ])?;
     tools::ensure_qemu()?;
     let defmt_print = tools::defmt_print()?;
     let mut test = cmd::cargo();
