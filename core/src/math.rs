@@ -19,6 +19,11 @@ compile_error!("cuesight: enable one math backend feature: `libm` (default) or `
 #[cfg(feature = "micromath")]
 use micromath::F32Ext as _;
 
+// Accurate elementary functions for the `micromath` backend (`Real::exp_accurate` and
+// friends); with `libm` those are `libm`'s, and these are only tested against it.
+#[cfg_attr(not(feature = "micromath"), allow(dead_code))]
+pub(crate) mod accurate;
+
 /// Square root of `x` (`x ≥ 0`; returns NaN for negative input like IEEE `sqrt`).
 #[inline(always)]
 pub fn sqrt(x: f32) -> f32 {

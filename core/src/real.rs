@@ -46,6 +46,24 @@ pub trait Real:
     fn exp_m1(x: Self) -> Self;
     /// `ln(1 + x)`, accurate near zero.
     fn ln_1p(x: Self) -> Self;
+    /// `e^x` to this precision's own accuracy whatever the math backend (the `micromath`
+    /// backend's `exp` is a ~1e-3 approximation): for an algorithm that needs smooth,
+    /// accurate elementary functions (`SeedExact`'s quadrature and root solves).
+    fn exp_accurate(x: Self) -> Self {
+        Self::exp(x)
+    }
+    /// `ln x`, as accurate as [`Real::exp_accurate`].
+    fn ln_accurate(x: Self) -> Self {
+        Self::ln(x)
+    }
+    /// `e^x − 1`, as accurate as [`Real::exp_accurate`].
+    fn exp_m1_accurate(x: Self) -> Self {
+        Self::exp_m1(x)
+    }
+    /// `ln(1 + x)`, as accurate as [`Real::exp_accurate`].
+    fn ln_1p_accurate(x: Self) -> Self {
+        Self::ln_1p(x)
+    }
     /// Larger of two (non-NaN) values, by comparison.
     fn max(a: Self, b: Self) -> Self {
         if a > b {
@@ -98,6 +116,26 @@ impl Real for f32 {
     #[inline(always)]
     fn ln_1p(x: Self) -> Self {
         crate::math::ln_1p(x)
+    }
+    #[cfg(feature = "micromath")]
+    #[inline(always)]
+    fn exp_accurate(x: Self) -> Self {
+        crate::math::accurate::exp(x)
+    }
+    #[cfg(feature = "micromath")]
+    #[inline(always)]
+    fn ln_accurate(x: Self) -> Self {
+        crate::math::accurate::ln(x)
+    }
+    #[cfg(feature = "micromath")]
+    #[inline(always)]
+    fn exp_m1_accurate(x: Self) -> Self {
+        crate::math::accurate::exp_m1(x)
+    }
+    #[cfg(feature = "micromath")]
+    #[inline(always)]
+    fn ln_1p_accurate(x: Self) -> Self {
+        crate::math::accurate::ln_1p(x)
     }
 }
 

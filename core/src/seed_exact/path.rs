@@ -142,12 +142,12 @@ impl<R: Real> SlipPath<R> {
 
     /// Largest μ on the path: at zero slip (the laws do not increase with speed).
     pub fn mu_max(&self) -> R {
-        self.law.at_in(R::ZERO)
+        self.mu(R::ZERO)
     }
 
     /// Smallest μ on the path: at the initial slip speed `|v₀|`.
     pub fn mu_min(&self) -> R {
-        self.law.at_in(self.speed)
+        self.mu(self.speed)
     }
 
     /// `|v₀|/μ_min`, the largest `dP/dq` (m/s); infinite when μ is so small that
@@ -156,9 +156,15 @@ impl<R: Real> SlipPath<R> {
         self.speed / self.mu_min()
     }
 
-    /// `μ` at slip speed `|v|` (m/s).
+    /// `μ` at slip speed `|v|` (m/s), with an accurate `exp` whatever the backend (the
+    /// quadrature and the root solves need it smooth).
     fn mu(&self, slip_speed: R) -> R {
-        self.law.at_in(slip_speed)
+        match self.law {
+            FrictionLaw::Constant(mu) => R::of(mu),
+            FrictionLaw::SpeedDependent { a, b, c } => {
+                R::of(a) + R::of(b) * R::exp_accurate(-R::of(c) * slip_speed)
+            }
+        }
     }
 
     /// `dP/dw = (|v₀|/μ) g dq/dw`, `dq/dw = ρ^{1−κ}/κ`, from `ρ`, `τ = ρ^ε` and
@@ -186,7 +192,7 @@ impl<R: Real> SlipPath<R> {
         if self.lean == R::ZERO {
             R::ONE
         } else {
-            R::exp(self.lean * R::ln(rho))
+            R::exp_accurate(self.lean * R::ln_accurate(rho))
         }
     }
 
@@ -239,13 +245,13 @@ impl<R: Real> SlipPath<R> {
         if w >= R::ONE {
             R::ONE
         } else {
-            -R::exp_m1(R::ln_1p(-w) / self.kappa)
+            -R::exp_m1_accurate(R::ln_1p_accurate(-w) / self.kappa)
         }
     }
 
     /// `w = 1 − ρ^κ` where `ρ^{k_y} = 1 − ratio` (`ratio < 1`).
     pub fn w_of_y_ratio(&self, ratio: R) -> R {
-        -R::exp_m1(self.kappa / R::of(K_Y) * R::ln_1p(-ratio))
+        -R::exp_m1_accurate(self.kappa / R::of(K_Y) * R::ln_1p_accurate(-ratio))
     }
 
     /// The state after the slip has slid from contact to `ρ = 1 − q` (`q ∈ [0, 1]`).
@@ -293,11 +299,11 @@ impl<R: Real> SlipPath<R> {
         let (tau, z_change) = if self.lean == R::ZERO {
             (R::ONE, rho6_minus_1)
         } else if q < R::of(0.5) {
-            let tau_minus_1 = R::exp_m1(self.lean * R::ln_1p(-q));
+            let tau_minus_1 = R::exp_m1_accurate(self.lean * R::ln_1p_accurate(-q));
             let tau = R::ONE + tau_minus_1;
             (tau, (rho6_minus_1 - tau_minus_1) / tau)
         } else {
-            let tau = R::exp(self.lean * R::ln(rho));
+            let tau = R::exp_accurate(self.lean * R::ln_accurate(rho));
             (tau, power / tau - R::ONE) // power = ρ⁶
         };
         let pace = match self.law {
