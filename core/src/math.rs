@@ -84,7 +84,7 @@ pub fn max(a: f32, b: f32) -> f32 {
 mod sincos;
 
 /// Sine of `x` (radians). Input construction only. Both backends use the f32-only
-/// [`sincos`] reduction and polynomials (within 1.2e-7 of the exact value for
+/// `sincos` reduction and polynomials (within 1.2e-7 of the exact value for
 /// |x| ≤ 8192): `libm::sinf` reduces in f64, which is software on the Cortex-M4F.
 #[inline]
 pub fn sin(x: f32) -> f32 {
