@@ -127,6 +127,17 @@ impl Motion {
         radius: f32,
         cloth: &Cloth,
     ) -> Result<Self> {
+        // The usual, valid case in three squared norms: a norm within the bound puts
+        // every component within it, and NaN, ±∞ or an overflowing square fail the
+        // comparison. The component checks below then only run to accept a vector
+        // whose norm alone is over (each component within) or to name what is wrong.
+        if position.dot(position) <= f32::MAX
+            && velocity.dot(velocity) <= MAX_VELOCITY * MAX_VELOCITY
+            && spin.dot(spin) <= MAX_SPIN * MAX_SPIN
+            && (0.001..=1.0).contains(&radius)
+        {
+            return Ok(Self::unchecked(position, velocity, spin, radius, cloth));
+        }
         for x in [position.x, position.y, position.z] {
             if !math::is_finite(x) {
                 return Err(Error::NotFinite {
