@@ -349,6 +349,35 @@ impl<R: Real> Impulse<'_, R> {
 mod tests {
     use super::*;
 
+    /// Found by the `collide` fuzz target: a nearly plastic impact (e* = 2.4e-38) in
+    /// f64 put the impact end's root a few ulps above w = 0 under a square root, and
+    /// the root solve ran out of evaluations (`NumericalFailure` for a valid input).
+    #[test]
+    #[cfg(feature = "libm")]
+    fn a_nearly_plastic_grazing_impact_solves_in_f64() {
+        let law = crate::FrictionLaw::speed_dependent(0.05, 0.2, 1.992_187_5).unwrap();
+        let params = crate::Params::POOL
+            .with_friction_law(law)
+            .with_restitution(2.406_568e-38)
+            .unwrap()
+            .with_mu_s(0.4)
+            .unwrap()
+            .with_ball(0.030_980_391, 0.105_210_036)
+            .unwrap();
+        let impact =
+            crate::Impact::from_velocity([1.947_072e-6, 10.000_001], [200.0, 200.0, -200.0])
+                .unwrap();
+        for restitution in [2.406_568e-38, 1e-30, 0.0, 1e-10] {
+            let params = params.with_restitution(restitution).unwrap();
+            let f64_outcome = crate::collide_f64(&params, &impact, crate::Model::SeedExact);
+            let f32_outcome = crate::collide(&params, &impact, crate::Model::SeedExact);
+            assert!(
+                f64_outcome.is_ok() && f32_outcome.is_ok(),
+                "e* = {restitution:e}"
+            );
+        }
+    }
+
     fn params(mu: f32, e: f32, mu_s: f32) -> Params {
         Params::new(mu, e, mu_s, 0.028575, 0.17).unwrap()
     }
