@@ -378,6 +378,31 @@ mod tests {
         }
     }
 
+    /// Found by the `collide` fuzz target: at 3.6e-22 m/s the f32 work is subnormal and
+    /// flat in steps along the impact, Newton crept and the end's root solve ran out of
+    /// evaluations (`NumericalFailure` for a valid input).
+    #[test]
+    fn an_impact_whose_work_is_subnormal_solves_in_f32() {
+        let law =
+            crate::FrictionLaw::speed_dependent(0.121_569_51, 0.121_568_63, 0.009_155_273).unwrap();
+        let params = Params::new(0.1, 0.500_015_26, 0.796_902_5, 0.416_570_43, 47.726_395)
+            .unwrap()
+            .with_friction_law(law);
+        let impact = Impact::from_velocity(
+            [3.632_260_7e-22, 3.369_334_4e-20],
+            [-9921.875, 9.688_645e-39, 0.0],
+        )
+        .unwrap();
+        let f32_outcome = crate::collide(&params, &impact, crate::Model::SeedExact).unwrap();
+        let normal = f32_outcome.impulses.normal;
+        let exact = crate::collide(&params, &impact, crate::Model::Exact).unwrap();
+        let reference = exact.impulses.normal;
+        assert!(
+            (normal - reference).abs() <= 0.05 * reference,
+            "{normal} vs {reference}"
+        );
+    }
+
     fn params(mu: f32, e: f32, mu_s: f32) -> Params {
         Params::new(mu, e, mu_s, 0.028575, 0.17).unwrap()
     }

@@ -3,7 +3,10 @@
 //! For an increasing function `f` with `f(lo) ≤ 0 ≤ f(hi)` (the caller establishes the
 //! bracket, from values it computed or from a proven bound), each step evaluates
 //! `(f(x), f'(x))` once, shrinks the bracket by the sign of `f(x)`, and moves to the
-//! Newton point when it lies inside the bracket, otherwise to the midpoint. It returns
+//! Newton point when it lies inside the bracket and is at most half the previous move
+//! away, otherwise to the midpoint (as Numerical Recipes' `rtsafe`: where `f` is flat at
+//! its rounding level Newton creeps by equal steps, and the bisections keep halving the
+//! bracket). It returns
 //! the last evaluated point when
 //!
 //! * `|f(x)|` is within the caller's `residual` — the rounding level of `f`, below which
@@ -59,6 +62,9 @@ pub(super) fn increasing_root<R: Real, T>(
     } else {
         R::of(0.5) * (lo + hi)
     };
+    // The previous move; the first Newton step is free (any move inside the bracket is
+    // at most half of this).
+    let mut last_move = R::of(2.0) * (hi - lo);
     for _ in 0..MAX_EVALUATIONS {
         let Sample {
             value,
@@ -94,13 +100,17 @@ pub(super) fn increasing_root<R: Real, T>(
             n if n < lo && !lo_tried => lo,
             n => n,
         };
-        if slope > R::ZERO && inside(newton, lo, hi, lo_tried, hi_tried) {
+        let converging = R::abs(newton - x) <= R::of(0.5) * last_move;
+        if slope > R::ZERO && inside(newton, lo, hi, lo_tried, hi_tried) && converging {
             if R::abs(step) <= scale {
                 return Ok((x, payload));
             }
+            last_move = R::abs(newton - x);
             x = newton;
         } else {
-            x = R::of(0.5) * (lo + hi);
+            let middle = R::of(0.5) * (lo + hi);
+            last_move = R::abs(middle - x);
+            x = middle;
         }
     }
     Err(Error::NumericalFailure)
@@ -136,6 +146,28 @@ mod tests {
         );
         let (x, _) = found.expect("converges");
         assert!((0.0..=4.0 * f64::EPSILON).contains(&x), "{x:e}");
+    }
+
+    /// Found by the `collide` fuzz target: an impact at 3.6e-22 m/s in f32, whose work
+    /// `D` is subnormal, so `√D` is flat over whole stretches of `w`: Newton crept by
+    /// equal steps of 1e-5 of the bracket and ran out of evaluations (`NumericalFailure`
+    /// for a valid input). A function that is flat at ±1e-6 either side of its root
+    /// (Newton steps of 1e-6) reproduces it.
+    #[test]
+    fn a_function_flat_at_its_rounding_level_is_bisected() {
+        let (x, _) = increasing_root(
+            |x: f32| Sample {
+                value: if x < 0.7 { -1e-6 } else { 1e-6 },
+                slope: 1.0,
+                payload: x,
+            },
+            0.0,
+            1.0,
+            0.1,
+            1e-9,
+        )
+        .expect("converges");
+        assert!((x - 0.7).abs() < 1e-6, "{x}");
     }
 
     #[test]
