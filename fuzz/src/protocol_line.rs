@@ -2,19 +2,21 @@
 //! [`LineReader`] → [`Session::serve`], one session per input (so one input can hold
 //! several request lines, e.g. the chunks of a stroke).
 //!
-//! Checked for every line: no panic; a blank line gets no answer and any other line
-//! exactly one: valid UTF-8, at most [`MAX_ANSWER`] bytes, one `\n` and only at the
-//! end; JSON that a host reads back as an [`Answer`] (so no `NaN`/`null` numbers), of
-//! the kind `serve` reported (an error of the reported class, or the request's own
-//! answer; `shutdown` ends the session and reports the session's counters) — or, for
-//! `shot`, a `{"shot":{...}}` object whose only `null`s are its absent parts; no `NaN`
-//! or `inf` written out as a word (unless the line itself held one that an error
-//! message may echo); and the session's counters equal the lines answered and the
-//! errors among them.
+//! Checked for every line: no panic; never an `internal` (the answer did not fit) or a
+//! `numerical_failure` error (the core's guard, which input that passed validation never
+//! trips); a blank line gets no answer and any other line exactly one: valid UTF-8, at
+//! most [`MAX_ANSWER`] bytes, one `\n` and only at the end; JSON that a host reads back
+//! as an [`Answer`] (so no `NaN`/`null` numbers), of the kind `serve` reported (an error
+//! of the reported class, or the request's own answer; `shutdown` ends the session and
+//! reports the session's counters) — or, for `shot`, a `{"shot":{...}}` object whose
+//! only `null`s are its absent parts; no `NaN` or `inf` written out as a word (unless the
+//! line itself held one that an error message may echo); and the session's counters
+//! equal the lines answered and the errors among them.
 
 use crate::finite::has_word;
 use cuesight_protocol::{
-    Answer, AnswerLine, Control, Event, Identity, LineReader, Served, Session, MAX_ANSWER, MAX_LINE,
+    Answer, AnswerLine, Control, ErrorKind, Event, Identity, LineReader, Served, Session,
+    MAX_ANSWER, MAX_LINE,
 };
 
 /// Who answers, for `version`.
@@ -89,6 +91,13 @@ fn check_answer(line: Option<&[u8]>, out: &[u8], served: &Served, session: &Sess
     assert!(
         !json.contains('\n'),
         "answer to {request:?} spans lines: {text:?}"
+    );
+    assert!(
+        !matches!(
+            served.error,
+            Some(ErrorKind::Internal | ErrorKind::NumericalFailure)
+        ),
+        "answer to {request:?} is an error that valid or invalid input never causes: {json}"
     );
     let value: serde_json::Value = serde_json::from_str(json)
         .unwrap_or_else(|e| panic!("answer to {request:?} is not JSON ({e}): {json}"));

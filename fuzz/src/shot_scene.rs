@@ -5,7 +5,9 @@
 //! `aim::solve_aim`, `guidance::guide` (what the CLI and the protocol's `shot` answer
 //! with) and the `travel::Motion` methods.
 //!
-//! Checked, whatever the input: no panic; a table's pockets finite; the scene never
+//! Checked, whatever the input: no panic; no `NumericalFailure` from `play`, `solve_aim`
+//! or `guide` (every input went through its constructor, and the core documents that
+//! guard as one valid input never trips); a table's pockets finite; the scene never
 //! holds more than [`MAX_BALLS`] balls, `add_ball` returns the new ball's index, or
 //! refuses with an input error (ball count only when full) and leaves the scene as it
 //! was; every number of an `Ok` shot finite (launch, every motion at its phase
@@ -16,13 +18,13 @@
 
 use std::f32::consts::PI;
 
-use cuesight::aim::{solve_aim, MAX_ITERATIONS, TOLERANCE};
+use cuesight::aim::{solve_aim, AimError, MAX_ITERATIONS, TOLERANCE};
 use cuesight::guidance::{guide, Aim, Target};
 use cuesight::shot::{play, ShotSetup, Stroke};
 use cuesight::strike::{Cue, TipOffset};
 use cuesight::table::{BallSet, Scene, Table, MAX_BALLS};
 use cuesight::travel::{Cloth, Motion};
-use cuesight::{Field, FrictionLaw, Model, Params, Vec3};
+use cuesight::{Error, Field, FrictionLaw, Model, Params, Vec3};
 
 use crate::finite;
 use crate::input::Input;
@@ -73,7 +75,13 @@ pub fn run(data: &[u8]) -> Report {
         return report;
     };
     if let Some(stroke) = stroke(&mut input, &scene, cue_speed, tip) {
-        if let Ok(shot) = play(&scene, &stroke, &setup) {
+        let played = play(&scene, &stroke, &setup);
+        assert_ne!(
+            played.err(),
+            Some(Error::NumericalFailure),
+            "play {stroke:?} with {setup:?} on {scene:?}"
+        );
+        if let Ok(shot) = played {
             report.played = true;
             finite::shot(&shot);
             probe(&mut input, &shot.cue_before, stroke.aim(), &scene);
@@ -103,7 +111,9 @@ pub fn run(data: &[u8]) -> Report {
     free_motion(&mut input);
     let object = usize::from(input.choice(MAX_BALLS as u8 + 1));
     let pocket = usize::from(input.choice(7));
-    if let Ok(aim) = solve_aim(&scene, object, pocket, cue_speed, tip, &setup) {
+    let solved = solve_aim(&scene, object, pocket, cue_speed, tip, &setup);
+    no_numerical_failure("solve_aim", solved.as_ref().err());
+    if let Ok(aim) = solved {
         report.aimed = true;
         finite::aim(&aim);
         assert!(
@@ -121,11 +131,22 @@ pub fn run(data: &[u8]) -> Report {
             target: (k == 1).then_some(target),
         },
     };
-    if let Ok(guidance) = guide(&scene, cue_speed, tip, aim, &setup) {
+    let guided = guide(&scene, cue_speed, tip, aim, &setup);
+    no_numerical_failure("guide", guided.as_ref().err());
+    if let Ok(guidance) = guided {
         report.guided = true;
         finite::debug("guidance", &guidance);
     }
     report
+}
+
+/// The core's numerical guard is for outputs valid input cannot produce: it must not
+/// trip here, where every input went through its constructor.
+fn no_numerical_failure(what: &str, error: Option<&AimError>) {
+    assert!(
+        error != Some(&AimError::Invalid(Error::NumericalFailure)),
+        "{what}: numerical failure"
+    );
 }
 
 /// A table, a ball radius and the cue ball.
