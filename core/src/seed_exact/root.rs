@@ -12,7 +12,7 @@
 //! * `|f(x)|` is within the caller's `residual` — the rounding level of `f`, below which
 //!   the root is not determined in this precision — or
 //! * the Newton step is within [`TOLERANCE_EPSILONS`] machine epsilons of `x`, or
-//! * the bracket is within that many epsilons of `max(|x|, 1)` (the variable lives in
+//! * the bracket is within that many epsilons of `max(|x|, ε)` (the variable lives in
 //!   `[0, 1]`);
 //!
 //! and fails with [`Error::NumericalFailure`] after [`MAX_EVALUATIONS`] or on a NaN. It
@@ -21,10 +21,10 @@
 use crate::error::{Error, Result};
 use crate::real::Real;
 
-/// Evaluations at most: bisection alone narrows `[0, 1]` to `2⁻⁶⁴`, below f64's
-/// tolerance; Newton from the first-order guess takes a few (measured on the grid, see
-/// `docs/physics.md` §7).
-pub(super) const MAX_EVALUATIONS: usize = 64;
+/// Evaluations at most: bisection alone narrows `[0, 1]` to `2⁻¹²⁸`, below f64's
+/// absolute floor `2ε²` (a root next to 0 needs about 103 halvings); Newton from the
+/// first-order guess takes a few (measured on the grid, see `docs/physics.md` §7).
+pub(super) const MAX_EVALUATIONS: usize = 128;
 
 /// Relative stopping tolerance on `x`, in machine epsilons of the evaluation precision.
 const TOLERANCE_EPSILONS: f32 = 2.0;
@@ -85,12 +85,13 @@ pub(super) fn increasing_root<R: Real, T>(
             hi_tried = true;
         }
         let scale = R::abs(x) * tolerance;
-        // The bracket test is relative to x but never below 1: the solves run in
-        // w ∈ [0, 1], and where Newton cannot help (a square-root singularity with the
-        // root a few ulps above 0, as a nearly plastic impact, e* ≈ 1e-38, puts the
-        // impact end) a relative width would take about a thousand halvings (found by
-        // the `collide` fuzz target). Newton steps keep the relative test.
-        if hi - lo <= R::max(R::abs(x), R::ONE) * tolerance {
+        // The bracket test is relative to x but never below ε (absolute, w ∈ [0, 1]):
+        // where Newton cannot help (a square-root singularity with the root a few ulps
+        // above 0, as a nearly plastic impact, e* ≈ 1e-38, puts the impact end) a purely
+        // relative width would take about a thousand halvings (found by the `collide`
+        // fuzz target); with the floor, ~103 in f64. A root below ε is below what the
+        // precision resolves next to w = 1 anyway. Newton steps keep the relative test.
+        if hi - lo <= R::max(R::abs(x), R::epsilon()) * tolerance {
             return Ok((x, payload));
         }
         let step = value / slope; // ±inf or NaN when the slope is 0 or not finite
