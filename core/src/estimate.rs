@@ -61,6 +61,7 @@ pub fn error_estimate(params: &Params, impact: &Impact, model: Model) -> f32 {
 /// The cheapest tier whose estimate meets `tolerance` (`Exact` if none does), with its
 /// estimate. Tiers are tried in the order of [`Model::ALL`] (mean cost on the
 /// Cortex-M4F, `docs/tradeoff.md`).
+#[inline(never)]
 pub fn select(params: &Params, impact: &Impact, tolerance: f32) -> (Model, f32) {
     let f = Features::of(params, impact);
     for (model, estimate) in [

@@ -30,6 +30,7 @@
 //!   maximum compression is `e*²` times the compression work (seed eq. (37)); the end
 //!   is located inside its step (normal velocity linear in `p` within a step).
 
+use crate::error::Result;
 use crate::friction::FrictionLaw;
 use crate::impact::Impact;
 use crate::kim_grip::initial_slip;
@@ -273,7 +274,9 @@ impl<R: Real> Model<R> {
     }
 }
 
-pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
+// Not inlined into `model::collide_in` (see `kim_grip::collide`).
+#[inline(never)]
+pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
     let law = params.friction_law();
     let restitution = R::of(params.restitution());
     let approach = R::of(impact.velocity().x);
@@ -400,6 +403,7 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
         friction_z: state.friction_z,
         table: -state.table_x,
         table_y: state.table_y,
+        table_size: R::sqrt(state.table_x * state.table_x + state.table_y * state.table_y),
         cue_table_x: state.cue_table_x,
         cue_table_y: state.cue_table_y,
     };

@@ -13,13 +13,16 @@
 //! E1's corrected object-ball spin `Ω_y = μ(1+e)/(2ν) · U cos φ / R · (1 − μ_s) sin θ₀`.
 //! The model assumes the contact slides throughout; see `kim_grip` for the fix.
 
+use crate::error::Result;
 use crate::impact::Impact;
 use crate::kim_grip::initial_slip;
 use crate::outcome::{Outcome, Regime, SpecificImpulses};
 use crate::params::Params;
 use crate::real::Real;
 
-pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
+// Not inlined into `model::collide_in` (see `kim_grip::collide`).
+#[inline(never)]
+pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
     let half = R::of(0.5);
     let law = params.friction_law();
     let approach = R::of(impact.velocity().x);
@@ -58,6 +61,7 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
         friction_z: j_z,
         table,
         table_y: R::ZERO,
+        table_size: R::abs(table),
         cue_table_x: R::ZERO,
         cue_table_y: R::ZERO,
     };

@@ -33,11 +33,14 @@
 //! restitution (`W_restitution = e*² |W_compression|`, seed eq. (37)) give `p_f` in
 //! closed form on each linear piece.
 
+use crate::error::Result;
 use crate::friction::FrictionLaw;
 use crate::impact::Impact;
 use crate::outcome::{Outcome, Regime, SpecificImpulses};
 use crate::params::Params;
 use crate::real::Real;
+
+mod fast_path;
 
 /// `ν = 2/5`, exact in `R`.
 fn nu<R: Real>() -> R {
@@ -50,7 +53,23 @@ fn k_y<R: Real>() -> R {
     R::of(7.0)
 }
 
-pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
+// Not inlined into `model::collide_in`: there LLVM hoists work shared by several models'
+// code (divisions included) above the dispatch, where every model pays for it.
+#[inline(never)]
+pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
+    let law = params.friction_law();
+    if let FrictionLaw::Constant(mu) = law {
+        if let Some(outcome) = fast_path::collide::<R>(params, impact, R::of(mu)) {
+            return outcome;
+        }
+    }
+    general::<R>(params, impact)
+}
+
+/// Every scene: any friction law, the cue ball's table friction, slips down to zero
+/// (scaled to their largest component).
+#[inline(never)]
+fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
     let half = R::of(0.5);
     let law = params.friction_law();
     let restitution = R::of(params.restitution());
@@ -166,6 +185,7 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Outcome {
         friction_z: j_z,
         table: table_x,
         table_y,
+        table_size: table,
         cue_table_x,
         cue_table_y,
     };
@@ -186,17 +206,18 @@ pub(crate) fn initial_slip<R: Real>(params: &Params, impact: &Impact) -> (R, R) 
 /// roughly in proportion, so the final `c` gives the mean direction:
 /// `c_x = p − X − (j_z + X)/ν` (the spin `Ω_y` adds `−R Ω_y`), `c_y = j_y`. Returns the
 /// `−x` magnitude and the `y` component of the table impulse.
+#[inline(always)]
 fn table_friction_components<R: Real>(table: R, span: R, j_y: R, j_z: R) -> (R, R) {
-    if table == R::ZERO {
-        return (R::ZERO, R::ZERO);
-    }
     let slip_x = span - table - (j_z + table) / nu::<R>();
     let slip_y = j_y;
     let length = R::sqrt(slip_x * slip_x + slip_y * slip_y);
-    if length == R::ZERO {
-        return (table, R::ZERO);
+    if length > R::ZERO {
+        let scale = table / length;
+        (scale * slip_x, -scale * slip_y)
+    } else {
+        // No slip at the table contact: no direction; the seed's −x (eq. (7)).
+        (table, R::ZERO)
     }
-    (table * slip_x / length, -table * slip_y / length)
 }
 
 /// The initial tangential slip and the quantities derived from it. The slip

@@ -1,6 +1,6 @@
 //! Model selection and the single entry point [`collide`].
 
-use crate::error::{Error, Field, Result};
+use crate::error::{Field, Result};
 use crate::impact::Impact;
 use crate::outcome::Outcome;
 use crate::params::Params;
@@ -89,22 +89,26 @@ pub fn collide_f64(params: &Params, impact: &Impact, model: Model) -> Result<Out
 
 /// As [`collide`], evaluated in the precision `R` ([`Real`]: `f32`, or `f64` with
 /// `libm`). Inputs and outputs are `f32` whatever `R`.
+///
+/// Every model builds its outcome with the guard of `Outcome::from_impulses` (no NaN,
+/// no infinity), and each is called in tail position so that its outcome is written
+/// straight into the caller's `Result`.
 pub fn collide_in<R: Real>(params: &Params, impact: &Impact, model: Model) -> Result<Outcome> {
-    let outcome = match model {
+    match model {
         Model::Ideal => crate::ideal::collide::<R>(params, impact),
         Model::Kim => crate::kim::collide::<R>(params, impact),
         Model::KimGrip => crate::kim_grip::collide::<R>(params, impact),
-        Model::SeedExact => crate::seed_exact::collide::<R>(params, impact)?,
+        Model::SeedExact => crate::seed_exact::collide::<R>(params, impact),
         Model::Exact => crate::exact::collide::<R>(params, impact),
-        Model::Auto { tolerance } => {
-            crate::error::check(Field::Tolerance, tolerance, 0.0, 1.0, true)?;
-            let (tier, _) = crate::estimate::select(params, impact, tolerance);
-            return collide_in::<R>(params, impact, tier);
-        }
-    };
-    if outcome.is_finite() {
-        Ok(outcome)
-    } else {
-        Err(Error::NumericalFailure)
+        Model::Auto { tolerance } => auto::<R>(params, impact, tolerance),
     }
+}
+
+/// [`Model::Auto`]: validate the tolerance, pick the tier, evaluate it. Kept out of
+/// [`collide_in`] so that the dispatch of the other models stays a jump.
+#[inline(never)]
+fn auto<R: Real>(params: &Params, impact: &Impact, tolerance: f32) -> Result<Outcome> {
+    crate::error::check(Field::Tolerance, tolerance, 0.0, 1.0, true)?;
+    let (tier, _) = crate::estimate::select(params, impact, tolerance);
+    collide_in::<R>(params, impact, tier)
 }

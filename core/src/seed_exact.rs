@@ -79,6 +79,8 @@ use root::{increasing_root, Sample};
 /// determined in this precision, and Newton steps would only chase the rounding.
 const RESIDUAL_EPSILONS: f32 = 4.0;
 
+// Not inlined into `model::collide_in` (see `kim_grip::collide`).
+#[inline(never)]
 pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
     let law = params.friction_law();
     let restitution = R::of(params.restitution());
@@ -87,12 +89,7 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
     if law.is_frictionless() || (slip_y == R::ZERO && slip_z == R::ZERO) {
         // No friction, or no slip and so no friction direction (exact gearing).
         let normal = R::of(0.5) * (R::ONE + restitution) * approach;
-        return Ok(Outcome::without_friction(
-            params,
-            impact,
-            normal,
-            law.is_frictionless(),
-        ));
+        return Outcome::without_friction(params, impact, normal, law.is_frictionless());
     }
     let path = SlipPath::new(slip_y, slip_z, R::of(params.mu_s()), law);
     // μ_s Θ(−θ₀): only the pressed object ball (topspin, v_z0 > 0) feels the table.
@@ -108,7 +105,7 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
         path: &path,
     };
     let Some(end) = impact_model.solve()? else {
-        return Ok(constant_direction(params, impact, &path, table_mu));
+        return constant_direction(params, impact, &path, table_mu);
     };
     let j_y = slip_y * end.point.y_change / R::of(K_Y);
     let j_z = slip_z * end.point.z_change / path.k_z;
@@ -122,10 +119,11 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
         friction_z: j_z,
         table,
         table_y: R::ZERO,
+        table_size: R::abs(table),
         cue_table_x: R::ZERO,
         cue_table_y: R::ZERO,
     };
-    Ok(Outcome::from_impulses(params, impact, impulses, end.regime))
+    Outcome::from_impulses(params, impact, impulses, end.regime)
 }
 
 /// The limit of the sliding solution when the slip barely changes (`q̄ ≤ ε`, or `|v₀|/μ`
@@ -138,7 +136,7 @@ fn constant_direction<R: Real>(
     impact: &Impact,
     path: &SlipPath<R>,
     table_mu: R,
-) -> Outcome {
+) -> Result<Outcome> {
     let (slip_y, slip_z) = initial_slip::<R>(params, impact);
     let approach = R::of(impact.velocity().x);
     let mu = path.mu_min();
@@ -147,12 +145,14 @@ fn constant_direction<R: Real>(
     let normal = (R::ONE + R::of(params.restitution())) * approach / slope;
     let friction = mu * normal;
     let (j_y, j_z) = (-friction * unit_y, -friction * unit_z);
+    let table = R::min(-table_mu * j_z, normal);
     let impulses = SpecificImpulses {
         normal,
         friction_y: j_y,
         friction_z: j_z,
-        table: R::min(-table_mu * j_z, normal),
+        table,
         table_y: R::ZERO,
+        table_size: R::abs(table),
         cue_table_x: R::ZERO,
         cue_table_y: R::ZERO,
     };

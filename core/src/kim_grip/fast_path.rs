@@ -1,0 +1,116 @@
+//! `KimGrip` for the common scene, written for the instruction count: constant μ, no
+//! cue-ball/table friction acting (μ_ct = 0, or the cue ball not pressed into the
+//! cloth), and a slip in the normal floating-point range. Same equations as the general
+//! path of the parent module, specialised:
+//!
+//! * `K = diag(7, k_z)`, so the boundary parameter is `α_b/|v₀| = 1/(k_y + k_z)` (the
+//!   general cross-product formula reduces to it exactly), and `K⁻¹` is two divisions;
+//! * constant μ makes the friction budget `S(p) = μ p`, so the fraction of the stick
+//!   budget spent is `p / p*` and the table-friction rate is `ρ = μ μ_s |ĵ_z|` with no
+//!   division by the span;
+//! * the slip is used unscaled: `|v₀|² ≥ MIN_SLIP_SQUARED` keeps every square far from
+//!   underflow (tinier slips take the scaled general path).
+//!
+//! Returns `None` when the scene is outside that case; the caller then runs the
+//! general path. `host-tests` and the unit tests below check that both paths agree.
+
+use super::{final_normal_impulse, k_y, table_friction_components};
+use crate::error::{Error, Result};
+use crate::impact::Impact;
+use crate::outcome::{Outcome, Regime, SpecificImpulses};
+use crate::params::Params;
+use crate::real::Real;
+
+/// Smallest `|v₀|²` ((m/s)²) handled here: 1e-24, a slip of 1 pm/s. Squares of the
+/// slip, of the stick impulse (`|v₀|/7`) and of the mid-point slip stay above 1e-28,
+/// ten orders of magnitude above `f32`'s smallest normal number.
+const MIN_SLIP_SQUARED: f32 = 1e-24;
+
+/// The fast path; `None` if the scene needs the general one.
+#[inline(always)]
+pub(super) fn collide<R: Real>(params: &Params, impact: &Impact, mu: R) -> Option<Result<Outcome>> {
+    let radius = R::of(params.radius());
+    let (u, w) = (impact.velocity(), impact.spin());
+    // Initial slip (seed eq. (11)), m/s.
+    let slip_y = -R::of(u.y) - radius * R::of(w.z);
+    let slip_z = radius * R::of(w.y);
+    let slip_squared = slip_y * slip_y + slip_z * slip_z;
+    // μ_ct (validated ≥ 0) is tested by its bits: any non-zero value, even one that
+    // would not act in this scene, takes the general path.
+    let handled = params.cue_table_friction().to_bits() == 0
+        && mu > R::ZERO
+        && slip_squared >= R::of(MIN_SLIP_SQUARED);
+    if !handled {
+        return None;
+    }
+    let object_pressed = slip_z > R::ZERO;
+    let mu_s = R::of(params.mu_s());
+    // k_z = (2 + ν − μ_s)/ν = 6 − 2.5 μ_s when the object ball is pressed, else 6
+    // (seed eq. (23) with erratum E1).
+    let k_z = if object_pressed {
+        R::of(6.0) - R::of(2.5) * mu_s
+    } else {
+        R::of(6.0)
+    };
+    // Stick impulse j_stick = −K⁻¹ v₀ and the budget s* = |j_stick| that stops the slip.
+    let stick_y = -slip_y / k_y::<R>();
+    let stick_z = -slip_z / k_z;
+    let stick_budget = R::sqrt(stick_y * stick_y + stick_z * stick_z);
+    // σ = s*/|v₀| and α_b/|v₀| = 1/(k_y + k_z): the direction's shape parameters.
+    let half_sigma = R::of(0.5) * stick_budget / R::sqrt(slip_squared);
+    let curvature = R::ONE / (k_y::<R>() + k_z) - half_sigma;
+    // The mid-point slip v_m = v₀ − α K v̂₀ after spending the fraction f = S/s* ≤ 1
+    // of the stick budget, α/|v₀| = f (σ/2 + (α_b/|v₀| − σ/2) f).
+    let (stiff_y, stiff_z) = (k_y::<R>() * slip_y, k_z * slip_z); // K v₀
+    let mid_slip = |fraction: R| -> (R, R) {
+        let alpha = fraction * (half_sigma + curvature * fraction);
+        (slip_y - alpha * stiff_y, slip_z - alpha * stiff_z)
+    };
+    let grip_normal = stick_budget / mu; // p*, m/s
+    let restitution = R::of(params.restitution());
+    let approach = R::of(u.x);
+    let table_rate = if object_pressed {
+        // ρ = μ μ_s |ĵ_z| at the first-order end of the slide, p = min((1+e)a/2, p*).
+        let first_normal = R::of(0.5) * (R::ONE + restitution) * approach;
+        let fraction = R::min(first_normal / grip_normal, R::ONE);
+        let (mid_y, mid_z) = mid_slip(fraction);
+        mu * mu_s * R::abs(mid_z) / R::sqrt(mid_y * mid_y + mid_z * mid_z)
+    } else {
+        R::ZERO
+    };
+    let normal = final_normal_impulse(approach, restitution, table_rate, grip_normal);
+    let (j_y, j_z, regime) = if normal < grip_normal {
+        let (mid_y, mid_z) = mid_slip(normal / grip_normal);
+        // j = μ p · (−v_m/|v_m|).
+        let scale = mu * normal / R::sqrt(mid_y * mid_y + mid_z * mid_z);
+        (-scale * mid_y, -scale * mid_z, Regime::Sliding)
+    } else {
+        (stick_y, stick_z, Regime::Gripping)
+    };
+    let (table, table_y, table_size) = if object_pressed {
+        let span = R::min(normal, grip_normal);
+        let size = table_rate * span;
+        let (table, table_y) = table_friction_components(size, span, j_y, j_z);
+        (table, table_y, size)
+    } else {
+        (R::ZERO, R::ZERO, R::ZERO)
+    };
+    // The guard of `Outcome::from_impulses`, on the four impulses the others derive
+    // from: |table|, |table_y| ≤ table_size (a unit vector's components times it).
+    let size = normal * normal + j_y * j_y + j_z * j_z + table_size * table_size;
+    let bounded = size <= R::of(1e36);
+    if !bounded {
+        return Some(Err(Error::NumericalFailure));
+    }
+    let impulses = SpecificImpulses {
+        normal,
+        friction_y: j_y,
+        friction_z: j_z,
+        table,
+        table_y,
+        table_size,
+        cue_table_x: R::ZERO,
+        cue_table_y: R::ZERO,
+    };
+    Some(Ok(Outcome::assemble(params, impact, impulses, regime)))
+}
