@@ -57,10 +57,11 @@ fn k_y<R: Real>() -> R {
 // code (divisions included) above the dispatch, where every model pays for it.
 #[inline(never)]
 pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
-    let law = params.friction_law();
-    if let FrictionLaw::Constant(mu) = law {
-        if let Some(outcome) = fast_path::collide::<R>(params, impact, R::of(mu)) {
-            return outcome;
+    // μ > 0 if the fast path's friction applies (constant μ > 0, μ_ct = 0), else 0.
+    let fast_mu = params.derived().kim_grip_mu;
+    if fast_mu > 0.0 {
+        if let Some(outcome) = fast_path::collide::<R>(params, impact, R::of(fast_mu)) {
+            return Ok(outcome);
         }
     }
     general::<R>(params, impact)
@@ -157,7 +158,13 @@ fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
     } else {
         -mu_ct * cue_dir_x * R::abs(first_dir_z) * first_budget / first_span
     };
-    let normal = final_normal_impulse(approach, restitution, table_rate, grip_normal);
+    let normal = final_normal_impulse(
+        approach,
+        restitution,
+        R::ONE + restitution,
+        table_rate,
+        grip_normal,
+    );
 
     let (j_y, j_z, regime) = if normal < grip_normal {
         let budget = budget_after(normal);
@@ -307,11 +314,14 @@ impl<R: Real> TangentialSlip<R> {
 ///
 /// `v_x(p) = −a + (2 − ρ) p` for `p ≤ p*`, slope 2 after; compression ends at
 /// `v_x = 0`; restitution ends when the work done since then is `e² |W_c|`.
-fn final_normal_impulse<R: Real>(a: R, e: R, rho: R, grip: R) -> R {
+///
+/// `one_plus_e` is `1 + e` (the caller may have it precomputed).
+#[inline(always)]
+fn final_normal_impulse<R: Real>(a: R, e: R, one_plus_e: R, rho: R, grip: R) -> R {
     let (half, two) = (R::of(0.5), R::of(2.0));
     let slope = two - rho;
     let compression_end = a / slope;
-    let sliding_end = (R::ONE + e) * compression_end;
+    let sliding_end = one_plus_e * compression_end;
     if sliding_end <= grip {
         return sliding_end;
     }
@@ -348,7 +358,9 @@ mod tests {
 
     #[test]
     fn normal_impulse_without_table_is_one_plus_e_half() {
-        assert!((final_normal_impulse(2.0f32, 0.9, 0.0, f32::INFINITY) - 1.9).abs() < 1e-6);
+        assert!(
+            (final_normal_impulse(2.0f32, 0.9, 1.0 + 0.9, 0.0, f32::INFINITY) - 1.9).abs() < 1e-6
+        );
     }
 
     #[test]
@@ -356,8 +368,8 @@ mod tests {
         let (a, e, rho) = (1.0f32, 0.9f32, 0.04f32);
         let p_c = a / (2.0 - rho);
         for grip in [p_c, (1.0 + e) * p_c] {
-            let below = final_normal_impulse(a, e, rho, grip * (1.0 - 1e-6));
-            let above = final_normal_impulse(a, e, rho, grip * (1.0 + 1e-6));
+            let below = final_normal_impulse(a, e, 1.0 + e, rho, grip * (1.0 - 1e-6));
+            let above = final_normal_impulse(a, e, 1.0 + e, rho, grip * (1.0 + 1e-6));
             assert!((below - above).abs() < 1e-5, "{below} vs {above} at {grip}");
         }
     }
@@ -365,7 +377,7 @@ mod tests {
     #[test]
     fn early_grip_tends_to_the_frictionless_impulse() {
         // Table friction that stops immediately leaves the frictionless (1+e) a / 2.
-        let p = final_normal_impulse(1.0f32, 0.95, 0.04, 0.0);
+        let p = final_normal_impulse(1.0f32, 0.95, 1.0 + 0.95, 0.04, 0.0);
         assert!((p - 0.975).abs() < 1e-6);
     }
 
@@ -378,5 +390,85 @@ mod tests {
             slip.stick_z / slip.stick_budget,
         );
         assert!((dy - sy).abs() < 1e-6 && (dz - sz).abs() < 1e-6);
+    }
+
+    /// The fast path evaluates the general path's equations specialised (diagonal `K`,
+    /// constant μ, unscaled slip), so both must agree to rounding wherever the fast
+    /// path applies. Differences are in units of the scene's speed scale
+    /// `S = max(U, R|ω|)`: `f32` within 2e-6 S (a few ulps of the largest term), `f64`
+    /// within 3e-7 S (the outcome is rounded to `f32`: a difference of 1e-16 can still
+    /// round to neighbouring `f32` values, 1.2e-7 S apart at most), and the same regime
+    /// away from the slide/grip boundary.
+    #[test]
+    fn fast_path_agrees_with_the_general_path() {
+        fn largest_difference<R: Real>(params: &Params, impact: &Impact) -> Option<(f32, bool)> {
+            let fast = fast_path::collide::<R>(params, impact, R::of(params.mu()))?;
+            let general = general::<R>(params, impact).ok()?;
+            let scale = impact.speed().max(params.radius() * impact.spin().length());
+            let mut worst = 0.0f32;
+            for (a, b) in [
+                (fast.cue_ball, general.cue_ball),
+                (fast.object_ball, general.object_ball),
+            ] {
+                let dv = a.velocity - b.velocity;
+                let dw = a.spin - b.spin;
+                worst = worst
+                    .max(dv.length() / scale)
+                    .max(params.radius() * dw.length() / scale);
+            }
+            Some((worst, fast.regime == general.regime))
+        }
+        // A small deterministic generator (no dev-dependency in the unit tests).
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut uniform = |lo: f32, hi: f32| {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
+        };
+        let (mut checked, mut regime_differs) = (0, 0);
+        let (mut worst32, mut worst64) = (0.0f32, 0.0f32);
+        for _ in 0..20_000 {
+            let params = Params::new(
+                uniform(1e-4, 1.0),
+                uniform(0.0, 1.0),
+                uniform(0.0, 1.0),
+                uniform(0.01, 0.1),
+                uniform(0.1, 1.0),
+            )
+            .unwrap();
+            let speed = uniform(0.01, 10.0);
+            let cut = uniform(-1.5, 1.5);
+            let spin = [
+                uniform(-300.0, 300.0),
+                uniform(-300.0, 300.0),
+                uniform(-300.0, 300.0),
+            ];
+            let impact = Impact::from_velocity(
+                [speed * crate::math::cos(cut), speed * crate::math::sin(cut)],
+                spin,
+            )
+            .unwrap();
+            if let Some((d32, same32)) = largest_difference::<f32>(&params, &impact) {
+                let (d64, _) = largest_difference::<f64>(&params, &impact).unwrap();
+                checked += 1;
+                worst32 = worst32.max(d32);
+                worst64 = worst64.max(d64);
+                regime_differs += usize::from(!same32);
+            }
+        }
+        assert!(checked > 19_000, "fast path taken in only {checked} scenes");
+        assert!(
+            worst32 <= 2e-6,
+            "f32: fast and general differ by {worst32:e} S"
+        );
+        assert!(
+            worst64 <= 3e-7,
+            "f64: fast and general differ by {worst64:e} S"
+        );
+        assert!(
+            regime_differs <= 2,
+            "regime differs in {regime_differs} scenes"
+        );
     }
 }

@@ -174,13 +174,15 @@ impl Outcome {
         if !j.is_bounded() {
             return Err(Error::NumericalFailure);
         }
-        Ok(Self::assemble(params, impact, j, regime))
+        Ok(Self::assemble::<R, true>(params, impact, j, regime))
     }
 
     /// [`Outcome::from_impulses`] without the guard, for a caller that has checked
-    /// its impulses itself (`kim_grip::fast_path`).
+    /// its impulses itself (`kim_grip::fast_path`). With `OBJECT_TABLE` false the
+    /// object ball's table friction is known to be zero and its terms are left out
+    /// (`x + 0` does not fold in IEEE arithmetic).
     #[inline(always)]
-    pub(crate) fn assemble<R: Real>(
+    pub(crate) fn assemble<R: Real, const OBJECT_TABLE: bool>(
         params: &Params,
         impact: &Impact,
         j: SpecificImpulses<R>,
@@ -200,7 +202,11 @@ impl Outcome {
         let radius = R::of(params.radius());
         let mass = params.mass();
         // Δω per unit specific impulse at the contact: R / (ν M R²) · M = 1 / (ν R).
-        let spin_per_impulse = R::of(5.0) / (R::of(2.0) * radius);
+        let spin_per_impulse = if R::SINGLE {
+            R::of(params.derived().spin_per_impulse)
+        } else {
+            R::of(2.5) / radius
+        };
         let u = impact.velocity();
         let w = impact.spin();
         let vec = |x: R, y: R, z: R| Vec3::new(x.to_f32(), y.to_f32(), z.to_f32());
@@ -236,14 +242,23 @@ impl Outcome {
                 ),
             )
         };
-        let object_velocity = vec(normal - table, j_y + table_y, object_lift);
         // Object ball: (−R x̂) × J gives the same; table friction at −R ẑ:
         // (−R ẑ) × (−X, T_y, 0) = R (T_y, X, 0).
-        let object_spin = vec(
-            table_y * spin_per_impulse,
-            (j_z + table) * spin_per_impulse,
-            -j_y * spin_per_impulse,
-        );
+        let (object_velocity, object_spin) = if OBJECT_TABLE {
+            (
+                vec(normal - table, j_y + table_y, object_lift),
+                vec(
+                    table_y * spin_per_impulse,
+                    (j_z + table) * spin_per_impulse,
+                    -j_y * spin_per_impulse,
+                ),
+            )
+        } else {
+            (
+                vec(normal, j_y, object_lift),
+                vec(zero, j_z * spin_per_impulse, -j_y * spin_per_impulse),
+            )
+        };
         let normal = normal.to_f32();
         let (j_y, j_z) = (j_y.to_f32(), j_z.to_f32());
         let table_size = table_size.to_f32();

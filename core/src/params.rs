@@ -17,18 +17,77 @@ pub struct Params {
     cue_table_friction: f32,
     radius: f32,
     mass: f32,
+    /// Constants of the models derived from the fields above, computed once here
+    /// instead of on every collision.
+    derived: Derived,
+}
+
+/// Per-`Params` constants of the hot path, a pure function of the other fields
+/// ([`Derived::of`]); every constructor recomputes them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(crate) struct Derived {
+    /// μ when `KimGrip`'s fast path applies (constant μ > 0, μ_ct = 0), else 0.
+    pub kim_grip_mu: f32,
+    /// `1 + e*`.
+    pub one_plus_restitution: f32,
+    /// `k_z = (2 + ν − μ_s)/ν = 6 − 2.5 μ_s` when the object ball is pressed into the
+    /// table (seed eq. (23) with erratum E1).
+    pub pressed_k_z: f32,
+    /// `1/(k_y + k_z) = 1/(13 − 2.5 μ_s)`, same case (`kim_grip`).
+    pub pressed_boundary: f32,
+    /// `1/(ν R)` (1/m): spin change per unit specific impulse at the contact.
+    pub spin_per_impulse: f32,
+}
+
+impl Derived {
+    const fn of(
+        friction: FrictionLaw,
+        restitution: f32,
+        mu_s: f32,
+        mu_ct: f32,
+        radius: f32,
+    ) -> Self {
+        let kim_grip_mu = match friction {
+            FrictionLaw::Constant(mu) if mu > 0.0 && mu_ct == 0.0 => mu,
+            _ => 0.0,
+        };
+        let pressed_k_z = 6.0 - 2.5 * mu_s;
+        Self {
+            kim_grip_mu,
+            one_plus_restitution: 1.0 + restitution,
+            pressed_k_z,
+            pressed_boundary: 1.0 / (7.0 + pressed_k_z),
+            spin_per_impulse: 2.5 / radius,
+        }
+    }
 }
 
 impl Params {
     /// Pool defaults: μ = 0.05, e* = 0.95, μ_s = 0.3, R = 28.575 mm, M = 0.17 kg.
-    pub const POOL: Self = Self {
-        friction: FrictionLaw::Constant(0.05),
-        restitution: 0.95,
-        mu_s: 0.3,
-        cue_table_friction: 0.0,
-        radius: 0.028575,
-        mass: 0.17,
-    };
+    pub const POOL: Self =
+        Self::assemble(FrictionLaw::Constant(0.05), 0.95, 0.3, 0.0, 0.028575, 0.17);
+
+    /// The one place a `Params` is put together (inputs already validated), so that
+    /// [`Derived`] always matches the fields.
+    const fn assemble(
+        friction: FrictionLaw,
+        restitution: f32,
+        mu_s: f32,
+        cue_table_friction: f32,
+        radius: f32,
+        mass: f32,
+    ) -> Self {
+        Self {
+            friction,
+            restitution,
+            mu_s,
+            cue_table_friction,
+            radius,
+            mass,
+            derived: Derived::of(friction, restitution, mu_s, cue_table_friction, radius),
+        }
+    }
 
     /// Validate and build.
     ///
@@ -38,22 +97,19 @@ impl Params {
     /// * `radius` — R in metres, in `[0.001, 1]`;
     /// * `mass` — M in kilograms, in `[0.001, 100]`.
     pub fn new(mu: f32, restitution: f32, mu_s: f32, radius: f32, mass: f32) -> Result<Self> {
-        Ok(Self {
-            friction: FrictionLaw::constant(mu)?,
-            restitution: check(Field::Restitution, restitution, 0.0, 1.0, false)?,
-            mu_s: check(Field::TableFriction, mu_s, 0.0, 1.0, false)?,
-            cue_table_friction: 0.0,
-            radius: check(Field::Radius, radius, 0.001, 1.0, false)?,
-            mass: check(Field::Mass, mass, 0.001, 100.0, false)?,
-        })
+        Ok(Self::assemble(
+            FrictionLaw::constant(mu)?,
+            check(Field::Restitution, restitution, 0.0, 1.0, false)?,
+            check(Field::TableFriction, mu_s, 0.0, 1.0, false)?,
+            0.0,
+            check(Field::Radius, radius, 0.001, 1.0, false)?,
+            check(Field::Mass, mass, 0.001, 100.0, false)?,
+        ))
     }
 
     /// Replace the friction by a constant μ (validated).
     pub fn with_mu(self, mu: f32) -> Result<Self> {
-        Ok(Self {
-            friction: FrictionLaw::constant(mu)?,
-            ..self
-        })
+        Ok(self.with_friction_law(FrictionLaw::constant(mu)?))
     }
 
     /// Set the cue-ball/table sliding friction μ_ct (in `[0, 1]`; default 0, as the seed
@@ -62,40 +118,67 @@ impl Params {
     /// table-contact slip. Used by `KimGrip`, `Exact` and the reference; `Kim` and `Ideal`
     /// ignore it.
     pub fn with_cue_table_friction(self, mu_ct: f32) -> Result<Self> {
-        Ok(Self {
-            cue_table_friction: check(Field::CueTableFriction, mu_ct, 0.0, 1.0, false)?,
-            ..self
-        })
+        let mu_ct = check(Field::CueTableFriction, mu_ct, 0.0, 1.0, false)?;
+        Ok(Self::assemble(
+            self.friction,
+            self.restitution,
+            self.mu_s,
+            mu_ct,
+            self.radius,
+            self.mass,
+        ))
     }
 
     /// Replace the friction law (already validated by its constructor).
     pub fn with_friction_law(self, friction: FrictionLaw) -> Self {
-        Self { friction, ..self }
+        Self::assemble(
+            friction,
+            self.restitution,
+            self.mu_s,
+            self.cue_table_friction,
+            self.radius,
+            self.mass,
+        )
     }
 
     /// Replace e* (validated).
     pub fn with_restitution(self, restitution: f32) -> Result<Self> {
-        Ok(Self {
-            restitution: check(Field::Restitution, restitution, 0.0, 1.0, false)?,
-            ..self
-        })
+        let restitution = check(Field::Restitution, restitution, 0.0, 1.0, false)?;
+        Ok(Self::assemble(
+            self.friction,
+            restitution,
+            self.mu_s,
+            self.cue_table_friction,
+            self.radius,
+            self.mass,
+        ))
     }
 
     /// Replace μ_s (validated).
     pub fn with_mu_s(self, mu_s: f32) -> Result<Self> {
-        Ok(Self {
-            mu_s: check(Field::TableFriction, mu_s, 0.0, 1.0, false)?,
-            ..self
-        })
+        let mu_s = check(Field::TableFriction, mu_s, 0.0, 1.0, false)?;
+        Ok(Self::assemble(
+            self.friction,
+            self.restitution,
+            mu_s,
+            self.cue_table_friction,
+            self.radius,
+            self.mass,
+        ))
     }
 
     /// Replace R and M (validated).
     pub fn with_ball(self, radius: f32, mass: f32) -> Result<Self> {
-        Ok(Self {
-            radius: check(Field::Radius, radius, 0.001, 1.0, false)?,
-            mass: check(Field::Mass, mass, 0.001, 100.0, false)?,
-            ..self
-        })
+        let radius = check(Field::Radius, radius, 0.001, 1.0, false)?;
+        let mass = check(Field::Mass, mass, 0.001, 100.0, false)?;
+        Ok(Self::assemble(
+            self.friction,
+            self.restitution,
+            self.mu_s,
+            self.cue_table_friction,
+            radius,
+            mass,
+        ))
     }
 
     /// Ball–ball friction coefficient μ: the constant value, or for a speed-dependent
@@ -127,6 +210,10 @@ impl Params {
     /// Ball mass M (kg).
     pub const fn mass(&self) -> f32 {
         self.mass
+    }
+    /// The derived constants of the hot path.
+    pub(crate) const fn derived(&self) -> &Derived {
+        &self.derived
     }
 }
 

@@ -21,6 +21,9 @@ pub trait Real:
     const ZERO: Self;
     /// 1.
     const ONE: Self;
+    /// `true` for `f32`: a constant that `Params` derived once in `f32` is then exactly
+    /// what the evaluation would compute, so a model may load it instead.
+    const SINGLE: bool;
     /// Widen (or keep) an `f32`.
     fn of(x: f32) -> Self;
     /// Round (or keep) an `f64` constant, e.g. a quadrature node, so that each
@@ -85,6 +88,7 @@ pub trait Real:
 impl Real for f32 {
     const ZERO: Self = 0.0;
     const ONE: Self = 1.0;
+    const SINGLE: bool = true;
     #[inline(always)]
     fn of(x: f32) -> Self {
         x
@@ -143,6 +147,7 @@ impl Real for f32 {
 impl Real for f64 {
     const ZERO: Self = 0.0;
     const ONE: Self = 1.0;
+    const SINGLE: bool = false;
     #[inline(always)]
     fn of(x: f32) -> Self {
         x as f64

@@ -15,7 +15,6 @@
 //! general path. `host-tests` and the unit tests below check that both paths agree.
 
 use super::{final_normal_impulse, k_y, table_friction_components};
-use crate::error::{Error, Result};
 use crate::impact::Impact;
 use crate::outcome::{Outcome, Regime, SpecificImpulses};
 use crate::params::Params;
@@ -26,31 +25,55 @@ use crate::real::Real;
 /// ten orders of magnitude above `f32`'s smallest normal number.
 const MIN_SLIP_SQUARED: f32 = 1e-24;
 
-/// The fast path; `None` if the scene needs the general one.
+/// The fast path for `mu = μ > 0` constant and `μ_ct = 0` (the caller checks both:
+/// `Params`' derived `kim_grip_mu`); `None` if the scene needs the general one (or if its guard, the one
+/// of `Outcome::from_impulses`, trips: the general path then reports the error).
 #[inline(always)]
-pub(super) fn collide<R: Real>(params: &Params, impact: &Impact, mu: R) -> Option<Result<Outcome>> {
+pub(super) fn collide<R: Real>(params: &Params, impact: &Impact, mu: R) -> Option<Outcome> {
     let radius = R::of(params.radius());
     let (u, w) = (impact.velocity(), impact.spin());
     // Initial slip (seed eq. (11)), m/s.
     let slip_y = -R::of(u.y) - radius * R::of(w.z);
     let slip_z = radius * R::of(w.y);
     let slip_squared = slip_y * slip_y + slip_z * slip_z;
-    // μ_ct (validated ≥ 0) is tested by its bits: any non-zero value, even one that
-    // would not act in this scene, takes the general path.
-    let handled = params.cue_table_friction().to_bits() == 0
-        && mu > R::ZERO
-        && slip_squared >= R::of(MIN_SLIP_SQUARED);
-    if !handled {
+    if slip_squared < R::of(MIN_SLIP_SQUARED) {
         return None;
     }
-    let object_pressed = slip_z > R::ZERO;
-    let mu_s = R::of(params.mu_s());
-    // k_z = (2 + ν − μ_s)/ν = 6 − 2.5 μ_s when the object ball is pressed, else 6
-    // (seed eq. (23) with erratum E1).
-    let k_z = if object_pressed {
-        R::of(6.0) - R::of(2.5) * mu_s
+    if slip_z > R::ZERO {
+        slide::<R, true>(params, impact, mu, slip_y, slip_z, slip_squared)
     } else {
-        R::of(6.0)
+        slide::<R, false>(params, impact, mu, slip_y, slip_z, slip_squared)
+    }
+}
+
+/// The rest of the fast path, compiled separately for `OBJECT_PRESSED` (`v_z0 > 0`,
+/// topspin: the object ball is pressed into the cloth and its table friction acts)
+/// and not, so that each keeps only its own work.
+#[inline(always)]
+fn slide<R: Real, const OBJECT_PRESSED: bool>(
+    params: &Params,
+    impact: &Impact,
+    mu: R,
+    slip_y: R,
+    slip_z: R,
+    slip_squared: R,
+) -> Option<Outcome> {
+    let mu_s = R::of(params.mu_s());
+    let derived = params.derived();
+    // k_z = (2 + ν − μ_s)/ν = 6 − 2.5 μ_s when the object ball is pressed, else 6
+    // (seed eq. (23) with erratum E1), and the boundary parameter 1/(k_y + k_z).
+    let (k_z, boundary) = if !OBJECT_PRESSED {
+        (R::of(6.0), R::ONE / R::of(13.0))
+    } else if R::SINGLE {
+        (R::of(derived.pressed_k_z), R::of(derived.pressed_boundary))
+    } else {
+        let k_z = R::of(6.0) - R::of(2.5) * mu_s;
+        (k_z, R::ONE / (k_y::<R>() + k_z))
+    };
+    let one_plus_restitution = if R::SINGLE {
+        R::of(derived.one_plus_restitution)
+    } else {
+        R::ONE + R::of(params.restitution())
     };
     // Stick impulse j_stick = −K⁻¹ v₀ and the budget s* = |j_stick| that stops the slip.
     let stick_y = -slip_y / k_y::<R>();
@@ -58,7 +81,7 @@ pub(super) fn collide<R: Real>(params: &Params, impact: &Impact, mu: R) -> Optio
     let stick_budget = R::sqrt(stick_y * stick_y + stick_z * stick_z);
     // σ = s*/|v₀| and α_b/|v₀| = 1/(k_y + k_z): the direction's shape parameters.
     let half_sigma = R::of(0.5) * stick_budget / R::sqrt(slip_squared);
-    let curvature = R::ONE / (k_y::<R>() + k_z) - half_sigma;
+    let curvature = boundary - half_sigma;
     // The mid-point slip v_m = v₀ − α K v̂₀ after spending the fraction f = S/s* ≤ 1
     // of the stick budget, α/|v₀| = f (σ/2 + (α_b/|v₀| − σ/2) f).
     let (stiff_y, stiff_z) = (k_y::<R>() * slip_y, k_z * slip_z); // K v₀
@@ -68,17 +91,23 @@ pub(super) fn collide<R: Real>(params: &Params, impact: &Impact, mu: R) -> Optio
     };
     let grip_normal = stick_budget / mu; // p*, m/s
     let restitution = R::of(params.restitution());
-    let approach = R::of(u.x);
-    let table_rate = if object_pressed {
+    let approach = R::of(impact.velocity().x);
+    let table_rate = if OBJECT_PRESSED {
         // ρ = μ μ_s |ĵ_z| at the first-order end of the slide, p = min((1+e)a/2, p*).
-        let first_normal = R::of(0.5) * (R::ONE + restitution) * approach;
+        let first_normal = R::of(0.5) * one_plus_restitution * approach;
         let fraction = R::min(first_normal / grip_normal, R::ONE);
         let (mid_y, mid_z) = mid_slip(fraction);
         mu * mu_s * R::abs(mid_z) / R::sqrt(mid_y * mid_y + mid_z * mid_z)
     } else {
         R::ZERO
     };
-    let normal = final_normal_impulse(approach, restitution, table_rate, grip_normal);
+    let normal = final_normal_impulse(
+        approach,
+        restitution,
+        one_plus_restitution,
+        table_rate,
+        grip_normal,
+    );
     let (j_y, j_z, regime) = if normal < grip_normal {
         let (mid_y, mid_z) = mid_slip(normal / grip_normal);
         // j = μ p · (−v_m/|v_m|).
@@ -87,7 +116,7 @@ pub(super) fn collide<R: Real>(params: &Params, impact: &Impact, mu: R) -> Optio
     } else {
         (stick_y, stick_z, Regime::Gripping)
     };
-    let (table, table_y, table_size) = if object_pressed {
+    let (table, table_y, table_size) = if OBJECT_PRESSED {
         let span = R::min(normal, grip_normal);
         let size = table_rate * span;
         let (table, table_y) = table_friction_components(size, span, j_y, j_z);
@@ -100,7 +129,8 @@ pub(super) fn collide<R: Real>(params: &Params, impact: &Impact, mu: R) -> Optio
     let size = normal * normal + j_y * j_y + j_z * j_z + table_size * table_size;
     let bounded = size <= R::of(1e36);
     if !bounded {
-        return Some(Err(Error::NumericalFailure));
+        // The general path repeats the scene and its guard returns the error.
+        return None;
     }
     let impulses = SpecificImpulses {
         normal,
@@ -112,5 +142,7 @@ pub(super) fn collide<R: Real>(params: &Params, impact: &Impact, mu: R) -> Optio
         cue_table_x: R::ZERO,
         cue_table_y: R::ZERO,
     };
-    Some(Ok(Outcome::assemble(params, impact, impulses, regime)))
+    Some(Outcome::assemble::<R, OBJECT_PRESSED>(
+        params, impact, impulses, regime,
+    ))
 }
