@@ -21,6 +21,11 @@
 //! assert!(out.throw_angle_deg() > 0.0); // stun cut: the object ball is thrown forward
 //! ```
 #![no_std]
+#![cfg_attr(
+    feature = "unstable-intrinsics",
+    feature(core_intrinsics),
+    allow(internal_features)
+)]
 #![deny(unsafe_code)]
 #![deny(missing_docs)]
 

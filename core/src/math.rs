@@ -27,7 +27,11 @@ pub(crate) mod accurate;
 /// Square root of `x` (`x ≥ 0`; returns NaN for negative input like IEEE `sqrt`).
 #[inline(always)]
 pub fn sqrt(x: f32) -> f32 {
-    #[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
+    #[cfg(all(
+        target_arch = "arm",
+        target_abi = "eabihf",
+        not(feature = "unstable-intrinsics")
+    ))]
     {
         let bits: u32;
         // Rust 1.95 refuses the `sreg` operand class on thumbv7em-none-eabihf (it asks
@@ -50,6 +54,20 @@ pub fn sqrt(x: f32) -> f32 {
             );
         }
         f32::from_bits(bits)
+    }
+    // The compiler's own square root (LLVM `llvm.sqrt.f32`): a bare `vsqrt.f32` with no
+    // register shuffling. Nightly only (the `unstable-intrinsics` feature).
+    #[cfg(all(
+        target_arch = "arm",
+        target_abi = "eabihf",
+        feature = "unstable-intrinsics"
+    ))]
+    {
+        // SAFETY: `sqrtf32` has no precondition (negative input gives NaN, as IEEE).
+        #[allow(unsafe_code)]
+        unsafe {
+            core::intrinsics::sqrtf32(x)
+        }
     }
     #[cfg(not(all(target_arch = "arm", target_abi = "eabihf")))]
     {

@@ -322,7 +322,9 @@ fn targets(report: &Value) -> String {
                 "- `KimGrip` f32 ≤ {KIM_GRIP_TARGET} instructions per collision: {} \
                  instructions on average, {} at most (opt-level 3; {} at opt-level s) — {}. \
                  For scale, `Ideal` (no friction at all, only the outcome bookkeeping and the \
-                 finiteness check) takes {}.\n",
+                 finiteness guard) takes {}. Where the instructions go, and what a bare \
+                 `vsqrt.f32` (nightly, feature `unstable-intrinsics`) would give: \
+                 [`physics.md` §4, Cost](physics.md#4-kimgrip).\n",
                 instructions(mean),
                 instructions(max),
                 opt(&is["mean"], instructions),
