@@ -27,7 +27,7 @@
 //! # let mut next_sample = next_sample;
 //! // A firmware keeps the ring in a static.
 //! let mut ring = RingBuffer::<i16, 24_000>::new(0);
-//! let mut trigger = ImpactTrigger::new(8.0 * 9.806_65, 333); // keep 50 ms after impact
+//! let mut trigger = ImpactTrigger::new(8.0 * 9.806_65, 333).ok()?; // keep 50 ms after impact
 //! loop {
 //!     let raw = next_sample(); // e.g. Lsm6dsox::read_accel_axis_raw(Axis::X) on DRDY
 //!     ring.push(raw);
@@ -59,4 +59,4 @@ pub use stroke::{
     estimate, estimate_raw, estimate_raw_with_pitch, estimate_with_pitch, ConfigField,
     StrokeConfig, StrokeError, StrokeEstimate,
 };
-pub use trigger::ImpactTrigger;
+pub use trigger::{ImpactTrigger, InvalidThreshold};

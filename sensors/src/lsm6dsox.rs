@@ -38,6 +38,8 @@
 //! ≈ 125 µs) can, at about 80 % bus load. For full six-axis capture at this rate use the
 //! part's FIFO or SPI (10 MHz); this driver covers the I²C path.
 
+use core::fmt;
+
 use embedded_hal::i2c::I2c;
 
 /// 7-bit I²C address with `SA0` tied low.
@@ -112,7 +114,34 @@ pub enum Error<E> {
     WrongChipId(u8),
     /// `SW_RESET` did not clear within [`RESET_POLLS`] reads.
     ResetTimeout,
+    /// The address given to [`Lsm6dsox::new`] is not one the part answers on
+    /// ([`ADDRESS_SA0_LOW`] or [`ADDRESS_SA0_HIGH`]; e.g. the 8-bit form `0xD4`, or a
+    /// value above `0x7F`, which is no 7-bit address). Reported before any bus traffic.
+    InvalidAddress(u8),
 }
+
+impl<E: fmt::Debug> fmt::Display for Error<E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::Bus(e) => write!(f, "I2C bus error: {e:?}"),
+            Error::WrongChipId(id) => write!(
+                f,
+                "WHO_AM_I reads 0x{id:02X}, not 0x{WHO_AM_I_VALUE:02X}: no LSM6DSOX at this address"
+            ),
+            Error::ResetTimeout => write!(
+                f,
+                "software reset (CTRL3_C SW_RESET) did not clear within {RESET_POLLS} polls"
+            ),
+            Error::InvalidAddress(address) => write!(
+                f,
+                "I2C address 0x{address:02X} is not an LSM6DSOX address (0x{ADDRESS_SA0_LOW:02X} \
+                 with SA0 low, 0x{ADDRESS_SA0_HIGH:02X} with SA0 high)"
+            ),
+        }
+    }
+}
+
+impl<E: fmt::Debug> core::error::Error for Error<E> {}
 
 impl<E> From<E> for Error<E> {
     fn from(e: E) -> Self {
@@ -194,7 +223,9 @@ pub struct Lsm6dsox<I> {
 
 impl<I: I2c> Lsm6dsox<I> {
     /// Wrap the bus; no traffic until [`Lsm6dsox::init`]. `address` is
-    /// [`ADDRESS_SA0_LOW`] or [`ADDRESS_SA0_HIGH`].
+    /// [`ADDRESS_SA0_LOW`] or [`ADDRESS_SA0_HIGH`]; with any other value every method
+    /// that would use the bus returns [`Error::InvalidAddress`] without touching it (the
+    /// bus stays owned here, [`Lsm6dsox::release`] gives it back).
     pub fn new(i2c: I, address: u8) -> Self {
         Self {
             i2c,
@@ -259,9 +290,9 @@ impl<I: I2c> Lsm6dsox<I> {
 
     /// Read gyroscope and accelerometer in one twelve-byte block read from `OUTX_L_G`.
     pub fn read_raw(&mut self) -> Result<RawSample, Error<I::Error>> {
+        let address = self.checked_address()?;
         let mut buf = [0u8; 12];
-        self.i2c
-            .write_read(self.address, &[reg::OUTX_L_G], &mut buf)?;
+        self.i2c.write_read(address, &[reg::OUTX_L_G], &mut buf)?;
         let word = |i: usize| i16::from_le_bytes([buf[2 * i], buf[2 * i + 1]]);
         Ok(RawSample {
             gyro: [word(0), word(1), word(2)],
@@ -283,8 +314,9 @@ impl<I: I2c> Lsm6dsox<I> {
                 Axis::Y => 2,
                 Axis::Z => 4,
             };
+        let address = self.checked_address()?;
         let mut buf = [0u8; 2];
-        self.i2c.write_read(self.address, &[register], &mut buf)?;
+        self.i2c.write_read(address, &[register], &mut buf)?;
         Ok(i16::from_le_bytes(buf))
     }
 
@@ -293,14 +325,24 @@ impl<I: I2c> Lsm6dsox<I> {
         self.i2c
     }
 
+    /// The address, if the part can answer on it.
+    fn checked_address(&self) -> Result<u8, Error<I::Error>> {
+        match self.address {
+            ADDRESS_SA0_LOW | ADDRESS_SA0_HIGH => Ok(self.address),
+            other => Err(Error::InvalidAddress(other)),
+        }
+    }
+
     fn read_register(&mut self, register: u8) -> Result<u8, Error<I::Error>> {
+        let address = self.checked_address()?;
         let mut buf = [0u8; 1];
-        self.i2c.write_read(self.address, &[register], &mut buf)?;
+        self.i2c.write_read(address, &[register], &mut buf)?;
         Ok(buf[0])
     }
 
     fn write(&mut self, register: u8, value: u8) -> Result<(), Error<I::Error>> {
-        self.i2c.write(self.address, &[register, value])?;
+        let address = self.checked_address()?;
+        self.i2c.write(address, &[register, value])?;
         Ok(())
     }
 }

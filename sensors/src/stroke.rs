@@ -40,6 +40,8 @@
 //!
 //! The result feeds [`cuesight::strike::strike`] through [`StrokeEstimate::strike`].
 
+use core::fmt;
+
 use cuesight::strike::{strike, Cue, Strike, TipOffset};
 use cuesight::Params;
 
@@ -178,6 +180,46 @@ pub enum ConfigField {
     CueElevation,
 }
 
+impl ConfigField {
+    /// The [`StrokeConfig`] field's name, as written in the source.
+    pub const fn name(&self) -> &'static str {
+        match self {
+            ConfigField::SampleRate => "sample_rate_hz",
+            ConfigField::ImpactThreshold => "impact_threshold",
+            ConfigField::OnsetDrop => "onset_drop",
+            ConfigField::MinRest => "min_rest",
+            ConfigField::RestNoiseLimit => "rest_noise_limit",
+            ConfigField::RestLevelTolerance => "rest_level_tolerance",
+            ConfigField::MotionFloor => "motion_floor",
+            ConfigField::FullScale => "full_scale",
+            ConfigField::CueElevation => "cue_elevation",
+        }
+    }
+
+    /// What the field must be, in words (the check [`StrokeConfig`] validation makes).
+    pub const fn valid_range(&self) -> &'static str {
+        match self {
+            ConfigField::SampleRate => "in [500, 100000] Hz",
+            ConfigField::ImpactThreshold
+            | ConfigField::OnsetDrop
+            | ConfigField::RestNoiseLimit
+            | ConfigField::RestLevelTolerance
+            | ConfigField::MotionFloor => "a finite number > 0 (m/s^2)",
+            ConfigField::MinRest => "in (0, 10] s",
+            ConfigField::FullScale => {
+                "above impact_threshold (m/s^2; +inf disables the saturation check)"
+            }
+            ConfigField::CueElevation => "in [-1.2, 1.2] rad",
+        }
+    }
+}
+
+impl fmt::Display for ConfigField {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// Why no cue speed could be estimated.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -191,13 +233,15 @@ pub enum StrokeError {
         /// Samples needed at this rate.
         min: usize,
     },
-    /// A sample is NaN or infinite (or the raw scale is).
+    /// A sample is NaN or infinite; from the raw estimators also a scale that is not a
+    /// finite, non-zero number (reported as index 0).
     NotFinite {
         /// Its index.
         index: usize,
     },
     /// No rest of `min_rest` before an impact: the capture did not start with the cue
-    /// held still.
+    /// held still. Also when the rest's level or spread is not representable in f32
+    /// (only possible with limits far beyond any accelerometer's range).
     NotAtRest,
     /// No impact-sized deceleration after the rest.
     NoImpact,
@@ -221,6 +265,50 @@ pub enum StrokeError {
     /// The strike model refused the estimate (e.g. above its 20 m/s range).
     Strike(cuesight::Error),
 }
+
+impl fmt::Display for StrokeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            StrokeError::InvalidConfig(field) => write!(
+                f,
+                "stroke config: {} must be {}",
+                field.name(),
+                field.valid_range()
+            ),
+            StrokeError::TooShort { len, min } => write!(
+                f,
+                "window too short: {len} samples, at least {min} are needed at this sample rate"
+            ),
+            StrokeError::NotFinite { index } => write!(
+                f,
+                "sample {index} is not a finite number (or the raw scale is not a finite, \
+                 non-zero number)"
+            ),
+            StrokeError::NotAtRest => {
+                f.write_str("no rest of min_rest (the cue held still) before the impact")
+            }
+            StrokeError::NoImpact => {
+                f.write_str("no impact (a deceleration beyond impact_threshold) after the rest")
+            }
+            StrokeError::Saturated { index } => write!(
+                f,
+                "sample {index}, between the rest and the impact, is at the sensor's full scale"
+            ),
+            StrokeError::NotForward { speed } => write!(
+                f,
+                "the cue speed at impact integrates to {speed} m/s, not forward (> 0): wrong \
+                 axis sign or no stroke"
+            ),
+            StrokeError::LengthMismatch { accel, pitch } => write!(
+                f,
+                "length mismatch: {accel} acceleration samples but {pitch} pitch-rate samples"
+            ),
+            StrokeError::Strike(error) => write!(f, "strike model: {error}"),
+        }
+    }
+}
+
+impl core::error::Error for StrokeError {}
 
 impl From<cuesight::Error> for StrokeError {
     fn from(e: cuesight::Error) -> Self {
@@ -527,8 +615,13 @@ fn run<P: Fn(usize) -> f32>(
         return Err(StrokeError::NotAtRest);
     }
 
-    // 3. Bias over the rest window.
+    // 3. Bias over the rest window. Its blocks passed the stillness tests, but with
+    //    limits far beyond any sensor's range the spread over several blocks can still
+    //    overflow f32: that is no rest.
     let (bias, rest_noise) = mean_std(&at, rest_start, rest_end);
+    if !(cuesight::math::is_finite(bias) && cuesight::math::is_finite(rest_noise)) {
+        return Err(StrokeError::NotAtRest);
+    }
 
     // 4. Impact crossing and onset.
     let limit = bias - config.impact_threshold;

@@ -285,7 +285,7 @@ fn capture(accel: &[i16], pitch: &[i16], fs: f64, aided: bool) -> Option<(Stroke
     let mut ring = Box::new(RingBuffer::<i16, RING>::new(0));
     let mut pitch_ring = Box::new(RingBuffer::<i16, RING>::new(0));
     // Keep 50 ms after the trigger.
-    let mut trigger = ImpactTrigger::new(8.0 * STANDARD_GRAVITY, (0.05 * fs) as usize);
+    let mut trigger = ImpactTrigger::new(8.0 * STANDARD_GRAVITY, (0.05 * fs) as usize).unwrap();
     let mut done = false;
     let mut pushed = 0;
     for (&word, &rate) in accel.iter().zip(pitch) {

@@ -53,7 +53,9 @@ pub extern "C" fn _start() -> ! {
     let _ = imu.init();
     let mut accel = RingBuffer::<i16, 24_000>::new(0);
     let mut pitch = RingBuffer::<i16, 24_000>::new(0);
-    let mut trigger = ImpactTrigger::new(8.0 * STANDARD_GRAVITY, 333);
+    let Ok(mut trigger) = ImpactTrigger::new(8.0 * STANDARD_GRAVITY, 333) else {
+        loop {}
+    };
     loop {
         let a = imu.read_accel_axis_raw(Axis::X).unwrap_or(0);
         let g = imu.read_raw().map(|raw| raw.gyro[1]).unwrap_or(0);
