@@ -279,3 +279,17 @@ pub struct ErrorAnswer {
     /// One line for a human.
     pub message: Message,
 }
+
+impl ErrorAnswer {
+    /// The `internal` error: an answer that did not fit the answer buffer (a bug: sizes
+    /// are checked by tests).
+    pub fn internal() -> Self {
+        let mut message = Message::new();
+        let _ = message.push_str("the answer did not fit the answer buffer");
+        Self {
+            kind: ErrorKind::Internal,
+            field: None,
+            message,
+        }
+    }
+}

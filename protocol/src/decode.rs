@@ -1,101 +1,67 @@
-//! Decoding a request line: strict JSON syntax first ([`crate::json`]), then the
-//! schema through serde and serde-json-core, with every problem named.
+//! Decoding a request line: strict JSON syntax first ([`crate::json::check`]), then the
+//! schema, read by hand over the checked line ([`json::Reader`]), with every problem
+//! named.
 //!
-//! The request types implement no `Deserialize`: serde's derived code reports unknown
-//! fields, missing fields and wrong types through `de::Error::custom`, and
-//! serde-json-core without `custom-error-messages` drops that text (with the feature it
-//! formats it into a 64-byte buffer with an `unwrap`, which panics on serde's longer
-//! "unknown field ..., expected one of ..." messages). The hand-written visitors below
-//! (`deny_unknown_fields` behaviour included) record *what* went wrong in a [`Diag`]
-//! that travels with the `DeserializeSeed`s, and the innermost field being read, so a
-//! bare serde-json-core error can still be pinned to a field.
-
-use core::fmt;
+//! This replaced serde and serde-json-core (issue 6: their generic code cost the
+//! firmware several KB of its 64 KiB of flash). It reads every value exactly as
+//! serde-json-core did — the same numbers (its own `f32` parser), strings as written
+//! (escapes kept: it was given no unescape buffer), the same checks in the same order,
+//! down to its quirks (an integer field reads `0` of `0.5` and then fails on `.5` with
+//! an error that names nothing, `not_a_request`) — so every line gets the answer it got
+//! before. The serde decoder is kept as the tests' oracle (`decode/oracle.rs`).
+//!
+//! Order of the checks in a body: fields in line order (a duplicate, an unknown field
+//! or a value of the wrong type fails at once), then, once the body is read, the model
+//! name, the request's own checks (conflicts, the table name), the required fields.
 
 use heapless::Vec;
-use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visitor};
 
+use crate::json::{self, Reader, WrongKind};
 use crate::names::ModelName;
 use crate::problem::{Name, NotARequest, Problem};
 use crate::request::{Collide, Overrides, Request, Spin, Stroke};
 #[cfg(feature = "shot")]
 use crate::shot::{Shot, TableName, MAX_OBJECT_BALLS};
-use crate::{json, MAX_SAMPLES};
+use crate::MAX_SAMPLES;
 
 /// Decode one request line (without its newline).
 pub fn decode(line: &[u8]) -> Result<Request, Problem> {
     json::check(line).map_err(Problem::Syntax)?;
-    let mut diag = Diag::default();
-    let mut de = serde_json_core::de::Deserializer::new(line, None);
-    let result = RequestSeed { diag: &mut diag }
-        .deserialize(&mut de)
-        .and_then(|request| de.end().map(|_| request));
-    result.map_err(|_| diag.into_problem())
-}
-
-/// What the visitors learnt before an error.
-#[derive(Default)]
-struct Diag {
-    /// The field whose value was being read, and what it should have been.
-    at: Option<(&'static str, &'static str)>,
-    /// A problem a visitor found itself (takes precedence).
-    problem: Option<Problem>,
-}
-
-impl Diag {
-    /// Record `problem` and return an error to unwind the deserializer with.
-    fn fail<E: de::Error>(&mut self, problem: Problem) -> E {
-        self.problem = Some(problem);
-        E::custom("")
+    let mut r = Reader::new(line);
+    if !r.open_object() {
+        return Err(Problem::NotARequest(NotARequest::NotAnObject));
     }
-
-    fn into_problem(self) -> Problem {
-        match (self.problem, self.at) {
-            (Some(problem), _) => problem,
-            // The JSON is valid (checked first): the value had the wrong shape.
-            (None, Some((field, expected))) => Problem::WrongType { field, expected },
-            (None, None) => Problem::NotARequest(NotARequest::NotAnObject),
+    let tag = match r.key() {
+        Ok(Some(tag)) => tag,
+        Ok(None) => return Err(Problem::NotARequest(NotARequest::Empty)),
+        Err(WrongKind) => return Err(Problem::NotARequest(NotARequest::NotAnObject)),
+    };
+    let request = match tag {
+        "collide" => Request::Collide(read_collide(&mut r)?),
+        "params" => Request::Params(read_params(&mut r)?),
+        "stroke" => Request::Stroke(read_stroke(&mut r)?),
+        #[cfg(feature = "shot")]
+        "shot" => Request::Shot(read_shot(&mut r)?),
+        #[cfg(not(feature = "shot"))]
+        "shot" => {
+            return Err(Problem::Unsupported {
+                field: "shot",
+                reason: "this firmware image has no shot guidance (build it with --features shot)",
+            })
         }
-    }
-
-    /// Read the value of `field` into `slot` (refusing duplicates), with `expected`
-    /// named if it has the wrong type.
-    fn value<'de, A, T>(
-        &mut self,
-        map: &mut A,
-        field: &'static str,
-        expected: &'static str,
-        slot: &mut Option<T>,
-    ) -> Result<(), A::Error>
-    where
-        A: MapAccess<'de>,
-        T: de::Deserialize<'de>,
-    {
-        if slot.is_some() {
-            return Err(self.fail(Problem::DuplicateField(field)));
+        "version" => {
+            read_empty(&mut r, "version")?;
+            Request::Version
         }
-        self.at = Some((field, expected));
-        let value = map.next_value::<T>()?;
-        self.at = None;
-        *slot = Some(value);
-        Ok(())
-    }
-
-    /// Read the request body under `field` (an object of `T`'s fields).
-    fn body<'de, A, T>(
-        &mut self,
-        map: &mut A,
-        field: &'static str,
-        expected: &'static str,
-    ) -> Result<T, A::Error>
-    where
-        A: MapAccess<'de>,
-        T: Body,
-    {
-        self.at = Some((field, expected));
-        let body = map.next_value_seed(BodySeed::<T>::new(self))?;
-        self.at = None;
-        Ok(body)
+        "shutdown" => {
+            read_empty(&mut r, "shutdown")?;
+            Request::Shutdown
+        }
+        other => return Err(Problem::UnknownRequest(Name::of(other))),
+    };
+    match r.key() {
+        Ok(None) => Ok(request),
+        _ => Err(Problem::NotARequest(NotARequest::SeveralKeys)),
     }
 }
 
@@ -118,127 +84,84 @@ const INDEX: &str = "a non-negative integer";
 #[cfg(feature = "shot")]
 const TIP_RADII: &str = "[side, height], two numbers (ball radii)";
 
-struct RequestSeed<'d> {
-    diag: &'d mut Diag,
+/// The fields of each request, for `unknown_field`.
+const PARAMS_FIELDS: &str = "mu, mu_b, mu_c, restitution, mu_s, radius, mass, model";
+const COLLIDE_FIELDS: &str =
+    "speed, cut, spin, roll, mu, mu_b, mu_c, restitution, mu_s, radius, mass, model";
+const STROKE_FIELDS: &str = "samples, more, rate_hz, scale, tip_offset, cue_mass, tip_restitution";
+#[cfg(feature = "shot")]
+const SHOT_FIELDS: &str = "table, cue, balls, speed, tip, aim, object, pocket, mu_cloth, mu_roll, \
+     cue_mass, tip_restitution, mu, mu_b, mu_c, restitution, mu_s, mass, model";
+
+/// How one field's value is read.
+type Read<'a, T> = fn(&mut Reader<'a>) -> Result<T, WrongKind>;
+
+/// Reads one field's value with `read` into `slot`, refusing a duplicate first; a
+/// value of the wrong kind is `wrong_type`, naming `expected`.
+fn field<'a, T>(
+    r: &mut Reader<'a>,
+    slot: &mut Option<T>,
+    name: &'static str,
+    expected: &'static str,
+    read: Read<'a, T>,
+) -> Result<(), Problem> {
+    if slot.is_some() {
+        return Err(Problem::DuplicateField(name));
+    }
+    *slot = Some(read(r).map_err(|WrongKind| Problem::WrongType {
+        field: name,
+        expected,
+    })?);
+    Ok(())
 }
 
-impl<'de> DeserializeSeed<'de> for RequestSeed<'_> {
-    type Value = Request;
+fn number(r: &mut Reader<'_>, slot: &mut Option<f32>, name: &'static str) -> Result<(), Problem> {
+    field(r, slot, name, NUMBER, Reader::f32)
+}
 
-    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<Request, D::Error> {
-        deserializer.deserialize_map(self)
+fn string<'a>(r: &mut Reader<'a>) -> Result<&'a str, WrongKind> {
+    r.string().ok_or(WrongKind)
+}
+
+/// Steps into the body of request `name`: `wrong_type` if it is not an object.
+fn open_body(
+    r: &mut Reader<'_>,
+    name: &'static str,
+    expected: &'static str,
+) -> Result<(), Problem> {
+    if r.open_object() {
+        Ok(())
+    } else {
+        Err(Problem::WrongType {
+            field: name,
+            expected,
+        })
     }
 }
 
-impl<'de> Visitor<'de> for RequestSeed<'_> {
-    type Value = Request;
-
-    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("a request object")
-    }
-
-    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Request, A::Error> {
-        let diag = self.diag;
-        let Some(tag) = map.next_key::<&str>()? else {
-            return Err(diag.fail(Problem::NotARequest(NotARequest::Empty)));
-        };
-        let request =
-            match tag {
-                "collide" => Request::Collide(diag.body(&mut map, "collide", OBJECT)?),
-                "params" => Request::Params(diag.body(&mut map, "params", OBJECT)?),
-                "stroke" => Request::Stroke(diag.body(&mut map, "stroke", OBJECT)?),
-                #[cfg(feature = "shot")]
-                "shot" => Request::Shot(diag.body(&mut map, "shot", OBJECT)?),
-                #[cfg(not(feature = "shot"))]
-                "shot" => return Err(diag.fail(Problem::Unsupported {
-                    field: "shot",
-                    reason:
-                        "this firmware image has no shot guidance (build it with --features shot)",
-                })),
-                "version" => {
-                    diag.body::<_, ()>(&mut map, "version", EMPTY)?;
-                    Request::Version
-                }
-                "shutdown" => {
-                    diag.body::<_, ()>(&mut map, "shutdown", EMPTY)?;
-                    Request::Shutdown
-                }
-                other => return Err(diag.fail(Problem::UnknownRequest(Name::of(other)))),
-            };
-        if map.next_key::<&str>()?.is_some() {
-            return Err(diag.fail(Problem::NotARequest(NotARequest::SeveralKeys)));
-        }
-        Ok(request)
-    }
+/// The next key of a body; `Err` after an integer that stopped early (`"object":0.5`),
+/// which serde-json-core answered with an error that named nothing.
+fn next_key<'a>(r: &mut Reader<'a>) -> Result<Option<&'a str>, Problem> {
+    r.key()
+        .map_err(|WrongKind| Problem::NotARequest(NotARequest::NotAnObject))
 }
 
-/// A request body: an object whose fields `T` knows how to read.
-trait Body: Sized {
-    /// The request's name, for messages.
-    const NAME: &'static str;
-    /// Every field name, for messages.
-    const EXPECTED: &'static str;
-    /// Read the fields from `map`.
-    fn read<'de, A: MapAccess<'de>>(map: A, diag: &mut Diag) -> Result<Self, A::Error>;
-}
-
-struct BodySeed<'d, T> {
-    diag: &'d mut Diag,
-    body: core::marker::PhantomData<T>,
-}
-
-impl<'d, T> BodySeed<'d, T> {
-    fn new(diag: &'d mut Diag) -> Self {
-        Self {
-            diag,
-            body: core::marker::PhantomData,
-        }
-    }
-}
-
-impl<'de, T: Body> DeserializeSeed<'de> for BodySeed<'_, T> {
-    type Value = T;
-
-    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<T, D::Error> {
-        deserializer.deserialize_map(self)
-    }
-}
-
-impl<'de, T: Body> Visitor<'de> for BodySeed<'_, T> {
-    type Value = T;
-
-    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(T::NAME)
-    }
-
-    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<T, A::Error> {
-        T::read(map, self.diag)
-    }
-}
-
-fn unknown<E: de::Error>(diag: &mut Diag, request: &'static str, field: &str) -> E {
-    diag.fail(Problem::UnknownField {
+fn unknown(request: &'static str, key: &str, expected: &'static str) -> Problem {
+    Problem::UnknownField {
         request,
-        field: Name::of(field),
-        expected: match request {
-            "collide" => Collide::EXPECTED,
-            "params" => Overrides::EXPECTED,
-            "stroke" => Stroke::EXPECTED,
-            #[cfg(feature = "shot")]
-            "shot" => Shot::EXPECTED,
-            _ => "no fields",
-        },
-    })
+        field: Name::of(key),
+        expected,
+    }
 }
 
-/// Reads one of the [`Overrides`] fields; `false` if `key` is not one.
-fn read_override<'de, A: MapAccess<'de>>(
-    map: &mut A,
-    diag: &mut Diag,
+/// Reads `key`'s value if it is one of the [`Overrides`] (`model` into `model`, by
+/// name); `Ok(false)` if it is not one.
+fn read_override<'a>(
+    r: &mut Reader<'a>,
     key: &str,
     with: &mut Overrides,
-    model: &mut Option<&'de str>,
-) -> Result<bool, A::Error> {
+    model: &mut Option<&'a str>,
+) -> Result<bool, Problem> {
     let (slot, name) = match key {
         "mu" => (&mut with.mu, "mu"),
         "mu_b" => (&mut with.mu_b, "mu_b"),
@@ -248,334 +171,252 @@ fn read_override<'de, A: MapAccess<'de>>(
         "radius" => (&mut with.radius, "radius"),
         "mass" => (&mut with.mass, "mass"),
         "model" => {
-            diag.value(map, "model", MODEL, model)?;
+            field(r, model, "model", MODEL, string)?;
             return Ok(true);
         }
         _ => return Ok(false),
     };
-    diag.value(map, name, NUMBER, slot)?;
+    number(r, slot, name)?;
     Ok(true)
 }
 
-fn parse_model<E: de::Error>(diag: &mut Diag, name: Option<&str>) -> Result<Option<ModelName>, E> {
+/// The model named in a body, if any.
+fn parse_model(name: Option<&str>) -> Result<Option<ModelName>, Problem> {
     match name {
         None => Ok(None),
-        Some(name) => match ModelName::from_name(name) {
-            Some(model) => Ok(Some(model)),
-            None => Err(diag.fail(Problem::UnknownModel(Name::of(name)))),
-        },
+        Some(name) => ModelName::from_name(name)
+            .map(Some)
+            .ok_or_else(|| Problem::UnknownModel(Name::of(name))),
     }
 }
 
-impl Body for Overrides {
-    const NAME: &'static str = "params";
-    const EXPECTED: &'static str = "mu, mu_b, mu_c, restitution, mu_s, radius, mass, model";
+fn read_params(r: &mut Reader<'_>) -> Result<Overrides, Problem> {
+    open_body(r, "params", OBJECT)?;
+    let mut with = Overrides::default();
+    let mut model = None;
+    while let Some(key) = next_key(r)? {
+        if !read_override(r, key, &mut with, &mut model)? {
+            return Err(unknown("params", key, PARAMS_FIELDS));
+        }
+    }
+    with.model = parse_model(model)?;
+    Ok(with)
+}
 
-    fn read<'de, A: MapAccess<'de>>(mut map: A, diag: &mut Diag) -> Result<Self, A::Error> {
-        let mut with = Overrides::default();
-        let mut model = None;
-        while let Some(key) = map.next_key::<&str>()? {
-            if !read_override(&mut map, diag, key, &mut with, &mut model)? {
-                return Err(unknown(diag, Self::NAME, key));
+fn read_collide(r: &mut Reader<'_>) -> Result<Collide, Problem> {
+    open_body(r, "collide", OBJECT)?;
+    let (mut speed, mut cut, mut spin, mut roll) = (None, None, None, None);
+    let mut with = Overrides::default();
+    let mut model = None;
+    while let Some(key) = next_key(r)? {
+        match key {
+            "speed" => number(r, &mut speed, "speed")?,
+            "cut" => number(r, &mut cut, "cut")?,
+            "spin" => field(r, &mut spin, "spin", SPIN, Reader::f32s::<3>)?,
+            "roll" => field(r, &mut roll, "roll", BOOL, Reader::bool)?,
+            _ => {
+                if !read_override(r, key, &mut with, &mut model)? {
+                    return Err(unknown("collide", key, COLLIDE_FIELDS));
+                }
             }
         }
-        with.model = parse_model(diag, model)?;
-        Ok(with)
+    }
+    with.model = parse_model(model)?;
+    let spin = match (spin, roll) {
+        (Some(_), Some(true)) => {
+            return Err(Problem::Conflict {
+                field: "roll",
+                with: "spin",
+            })
+        }
+        (_, Some(true)) => Spin::Roll,
+        (spin, _) => Spin::Given(spin.unwrap_or([0.0; 3])),
+    };
+    Ok(Collide {
+        speed: speed.ok_or(Problem::MissingField("speed"))?,
+        cut: cut.ok_or(Problem::MissingField("cut"))?,
+        spin,
+        with,
+    })
+}
+
+fn read_stroke(r: &mut Reader<'_>) -> Result<Stroke, Problem> {
+    open_body(r, "stroke", OBJECT)?;
+    let mut stroke = Stroke::chunk(Vec::new());
+    let (mut have_samples, mut more) = (false, None);
+    while let Some(key) = next_key(r)? {
+        match key {
+            "samples" => {
+                if have_samples {
+                    return Err(Problem::DuplicateField("samples"));
+                }
+                // In place: each copy of a chunk costs the firmware's stack its size.
+                read_samples(r, &mut stroke.samples)?;
+                have_samples = true;
+            }
+            "more" => field(r, &mut more, "more", BOOL, Reader::bool)?,
+            "rate_hz" => number(r, &mut stroke.rate_hz, "rate_hz")?,
+            "scale" => number(r, &mut stroke.scale, "scale")?,
+            "tip_offset" => field(
+                r,
+                &mut stroke.tip_offset,
+                "tip_offset",
+                TIP,
+                Reader::f32s::<2>,
+            )?,
+            "cue_mass" => number(r, &mut stroke.cue_mass, "cue_mass")?,
+            "tip_restitution" => number(r, &mut stroke.tip_restitution, "tip_restitution")?,
+            _ => return Err(unknown("stroke", key, STROKE_FIELDS)),
+        }
+    }
+    if !have_samples {
+        return Err(Problem::MissingField("samples"));
+    }
+    stroke.more = more.unwrap_or(false);
+    if stroke.more {
+        // The settings belong to the last chunk, which gets the estimate.
+        let given = [
+            ("rate_hz", stroke.rate_hz.is_some()),
+            ("scale", stroke.scale.is_some()),
+            ("tip_offset", stroke.tip_offset.is_some()),
+            ("cue_mass", stroke.cue_mass.is_some()),
+            ("tip_restitution", stroke.tip_restitution.is_some()),
+        ];
+        if let Some((field, _)) = given.into_iter().find(|(_, given)| *given) {
+            return Err(Problem::Conflict {
+                field,
+                with: "more",
+            });
+        }
+    } else if stroke.rate_hz.is_none() {
+        return Err(Problem::MissingField("rate_hz"));
+    }
+    Ok(stroke)
+}
+
+/// The `samples` of one chunk into `out`, at most [`MAX_SAMPLES`] (each sample is read
+/// before the count is checked, as serde did).
+fn read_samples(r: &mut Reader<'_>, out: &mut Vec<i16, MAX_SAMPLES>) -> Result<(), Problem> {
+    let wrong = |WrongKind| Problem::WrongType {
+        field: "samples",
+        expected: SAMPLES,
+    };
+    out.clear();
+    if !r.open_array() {
+        return Err(wrong(WrongKind));
+    }
+    while r.next_element() {
+        if out.push(r.i16().map_err(wrong)?).is_err() {
+            return Err(Problem::TooMany {
+                field: "samples",
+                limit: MAX_SAMPLES,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The body of `version` and `shutdown`: `{}`.
+fn read_empty(r: &mut Reader<'_>, name: &'static str) -> Result<(), Problem> {
+    open_body(r, name, EMPTY)?;
+    match next_key(r)? {
+        None => Ok(()),
+        Some(key) => Err(unknown("this request", key, "no fields")),
     }
 }
 
-impl Body for Collide {
-    const NAME: &'static str = "collide";
-    const EXPECTED: &'static str =
-        "speed, cut, spin, roll, mu, mu_b, mu_c, restitution, mu_s, radius, mass, model";
-
-    fn read<'de, A: MapAccess<'de>>(mut map: A, diag: &mut Diag) -> Result<Self, A::Error> {
-        let (mut speed, mut cut, mut spin, mut roll) = (None, None, None, None);
-        let mut with = Overrides::default();
-        let mut model = None;
-        while let Some(key) = map.next_key::<&str>()? {
-            match key {
-                "speed" => diag.value(&mut map, "speed", NUMBER, &mut speed)?,
-                "cut" => diag.value(&mut map, "cut", NUMBER, &mut cut)?,
-                "spin" => diag.value::<_, [f32; 3]>(&mut map, "spin", SPIN, &mut spin)?,
-                "roll" => diag.value(&mut map, "roll", BOOL, &mut roll)?,
-                _ => {
-                    if !read_override(&mut map, diag, key, &mut with, &mut model)? {
-                        return Err(unknown(diag, Self::NAME, key));
-                    }
-                }
-            }
-        }
-        with.model = parse_model(diag, model)?;
-        let spin = match (spin, roll) {
-            (Some(_), Some(true)) => {
-                return Err(diag.fail(Problem::Conflict {
-                    field: "roll",
-                    with: "spin",
-                }))
-            }
-            (_, Some(true)) => Spin::Roll,
-            (spin, _) => Spin::Given(spin.unwrap_or([0.0; 3])),
-        };
-        let Some(speed) = speed else {
-            return Err(diag.fail(Problem::MissingField("speed")));
-        };
-        let Some(cut) = cut else {
-            return Err(diag.fail(Problem::MissingField("cut")));
-        };
-        Ok(Collide {
-            speed,
-            cut,
-            spin,
-            with,
-        })
-    }
-}
-
-impl Body for Stroke {
-    const NAME: &'static str = "stroke";
-    const EXPECTED: &'static str =
-        "samples, more, rate_hz, scale, tip_offset, cue_mass, tip_restitution";
-
-    fn read<'de, A: MapAccess<'de>>(mut map: A, diag: &mut Diag) -> Result<Self, A::Error> {
-        // The samples are decoded in place (no `Option<Vec>` moved through the
-        // visitor's result): each copy of a chunk costs the firmware's stack its size.
-        let (mut samples, mut have_samples, mut more) = (Vec::new(), false, None);
-        let (mut rate_hz, mut scale, mut tip_offset) = (None, None, None);
-        let (mut cue_mass, mut tip_restitution) = (None, None);
-        while let Some(key) = map.next_key::<&str>()? {
-            match key {
-                "samples" => {
-                    if have_samples {
-                        return Err(diag.fail(Problem::DuplicateField("samples")));
-                    }
-                    diag.at = Some(("samples", SAMPLES));
-                    map.next_value_seed(SamplesSeed {
-                        diag: &mut *diag,
-                        out: &mut samples,
-                    })?;
-                    have_samples = true;
-                    diag.at = None;
-                }
-                "more" => diag.value(&mut map, "more", BOOL, &mut more)?,
-                "rate_hz" => diag.value(&mut map, "rate_hz", NUMBER, &mut rate_hz)?,
-                "scale" => diag.value(&mut map, "scale", NUMBER, &mut scale)?,
-                "tip_offset" => {
-                    diag.value::<_, [f32; 2]>(&mut map, "tip_offset", TIP, &mut tip_offset)?
-                }
-                "cue_mass" => diag.value(&mut map, "cue_mass", NUMBER, &mut cue_mass)?,
-                "tip_restitution" => {
-                    diag.value(&mut map, "tip_restitution", NUMBER, &mut tip_restitution)?
-                }
-                _ => return Err(unknown(diag, Self::NAME, key)),
-            }
-        }
-        if !have_samples {
-            return Err(diag.fail(Problem::MissingField("samples")));
-        }
-        let more = more.unwrap_or(false);
-        if more {
-            // The settings belong to the last chunk, which gets the estimate.
-            let given = [
-                ("rate_hz", rate_hz.is_some()),
-                ("scale", scale.is_some()),
-                ("tip_offset", tip_offset.is_some()),
-                ("cue_mass", cue_mass.is_some()),
-                ("tip_restitution", tip_restitution.is_some()),
-            ];
-            if let Some((field, _)) = given.into_iter().find(|(_, given)| *given) {
-                return Err(diag.fail(Problem::Conflict {
-                    field,
-                    with: "more",
-                }));
-            }
-        } else if rate_hz.is_none() {
-            return Err(diag.fail(Problem::MissingField("rate_hz")));
-        }
-        Ok(Stroke {
-            samples,
-            more,
-            rate_hz,
-            scale,
-            tip_offset,
-            cue_mass,
-            tip_restitution,
-        })
-    }
-}
-
+/// The body of a `shot`.
 #[cfg(feature = "shot")]
-impl Body for Shot {
-    const NAME: &'static str = "shot";
-    const EXPECTED: &'static str = "table, cue, balls, speed, tip, aim, object, pocket, mu_cloth, \
-         mu_roll, cue_mass, tip_restitution, mu, mu_b, mu_c, restitution, mu_s, mass, model";
-
-    fn read<'de, A: MapAccess<'de>>(mut map: A, diag: &mut Diag) -> Result<Self, A::Error> {
-        let (mut table, mut cue, mut speed, mut tip) = (None::<&str>, None, None, None);
-        let (mut balls, mut have_balls) = (Vec::new(), false);
-        let (mut aim, mut object, mut pocket) = (None, None, None);
-        let (mut mu_cloth, mut mu_roll, mut cue_mass, mut tip_restitution) =
-            (None, None, None, None);
-        let mut with = Overrides::default();
-        let mut model = None;
-        while let Some(key) = map.next_key::<&str>()? {
-            match key {
-                "table" => diag.value(&mut map, "table", TABLE, &mut table)?,
-                "cue" => diag.value::<_, [f32; 2]>(&mut map, "cue", POINT, &mut cue)?,
-                "balls" => {
-                    if have_balls {
-                        return Err(diag.fail(Problem::DuplicateField("balls")));
-                    }
-                    diag.at = Some(("balls", BALLS));
-                    map.next_value_seed(BallsSeed {
-                        diag: &mut *diag,
-                        out: &mut balls,
-                    })?;
-                    have_balls = true;
-                    diag.at = None;
+fn read_shot(r: &mut Reader<'_>) -> Result<Shot, Problem> {
+    open_body(r, "shot", OBJECT)?;
+    let mut shot = Shot {
+        table: TableName::Pool,
+        cue: [0.0; 2],
+        balls: Vec::new(),
+        speed: 0.0,
+        tip: [0.0; 2],
+        aim: None,
+        object: None,
+        pocket: None,
+        mu_cloth: None,
+        mu_roll: None,
+        cue_mass: None,
+        tip_restitution: None,
+        with: Overrides::default(),
+    };
+    let (mut table, mut cue, mut speed, mut tip) = (None, None, None, None);
+    let (mut have_balls, mut model) = (false, None);
+    while let Some(key) = next_key(r)? {
+        match key {
+            "table" => field(r, &mut table, "table", TABLE, string)?,
+            "cue" => field(r, &mut cue, "cue", POINT, Reader::f32s::<2>)?,
+            "balls" => {
+                if have_balls {
+                    return Err(Problem::DuplicateField("balls"));
                 }
-                "speed" => diag.value(&mut map, "speed", NUMBER, &mut speed)?,
-                "tip" => diag.value::<_, [f32; 2]>(&mut map, "tip", TIP_RADII, &mut tip)?,
-                "aim" => diag.value(&mut map, "aim", NUMBER, &mut aim)?,
-                "object" => diag.value(&mut map, "object", INDEX, &mut object)?,
-                "pocket" => diag.value(&mut map, "pocket", INDEX, &mut pocket)?,
-                "mu_cloth" => diag.value(&mut map, "mu_cloth", NUMBER, &mut mu_cloth)?,
-                "mu_roll" => diag.value(&mut map, "mu_roll", NUMBER, &mut mu_roll)?,
-                "cue_mass" => diag.value(&mut map, "cue_mass", NUMBER, &mut cue_mass)?,
-                "tip_restitution" => {
-                    diag.value(&mut map, "tip_restitution", NUMBER, &mut tip_restitution)?
-                }
-                // The balls are the table's set: their radius is not a shot field.
-                "radius" => return Err(unknown(diag, Self::NAME, key)),
-                _ => {
-                    if !read_override(&mut map, diag, key, &mut with, &mut model)? {
-                        return Err(unknown(diag, Self::NAME, key));
-                    }
+                read_balls(r, &mut shot.balls)?;
+                have_balls = true;
+            }
+            "speed" => number(r, &mut speed, "speed")?,
+            "tip" => field(r, &mut tip, "tip", TIP_RADII, Reader::f32s::<2>)?,
+            "aim" => number(r, &mut shot.aim, "aim")?,
+            "object" => field(r, &mut shot.object, "object", INDEX, Reader::u32)?,
+            "pocket" => field(r, &mut shot.pocket, "pocket", INDEX, Reader::u32)?,
+            "mu_cloth" => number(r, &mut shot.mu_cloth, "mu_cloth")?,
+            "mu_roll" => number(r, &mut shot.mu_roll, "mu_roll")?,
+            "cue_mass" => number(r, &mut shot.cue_mass, "cue_mass")?,
+            "tip_restitution" => number(r, &mut shot.tip_restitution, "tip_restitution")?,
+            // The balls are the table's set: their radius is not a shot field.
+            "radius" => return Err(unknown("shot", key, SHOT_FIELDS)),
+            _ => {
+                if !read_override(r, key, &mut shot.with, &mut model)? {
+                    return Err(unknown("shot", key, SHOT_FIELDS));
                 }
             }
         }
-        with.model = parse_model(diag, model)?;
-        let table = match table {
-            None => TableName::default(),
-            Some(name) => TableName::from_name(name).ok_or_else(|| {
-                diag.fail(Problem::InvalidValue {
-                    field: "table",
-                    expected: TableName::NAMES,
-                })
-            })?,
-        };
-        let Some(cue) = cue else {
-            return Err(diag.fail(Problem::MissingField("cue")));
-        };
-        let Some(speed) = speed else {
-            return Err(diag.fail(Problem::MissingField("speed")));
-        };
-        Ok(Shot {
-            table,
-            cue,
-            balls,
-            speed,
-            tip: tip.unwrap_or([0.0; 2]),
-            aim,
-            object,
-            pocket,
-            mu_cloth,
-            mu_roll,
-            cue_mass,
-            tip_restitution,
-            with,
-        })
     }
+    shot.with.model = parse_model(model)?;
+    if let Some(name) = table {
+        shot.table = TableName::from_name(name).ok_or(Problem::InvalidValue {
+            field: "table",
+            expected: TableName::NAMES,
+        })?;
+    }
+    shot.cue = cue.ok_or(Problem::MissingField("cue"))?;
+    shot.speed = speed.ok_or(Problem::MissingField("speed"))?;
+    shot.tip = tip.unwrap_or([0.0; 2]);
+    Ok(shot)
 }
 
-/// The `balls` array of a `shot`, into a fixed-capacity vector (`out`, in place).
+/// The `balls` of a `shot` into `out`, at most [`MAX_OBJECT_BALLS`] (each ball is read
+/// before the count is checked, as serde did).
 #[cfg(feature = "shot")]
-struct BallsSeed<'d> {
-    diag: &'d mut Diag,
-    out: &'d mut Vec<[f32; 2], MAX_OBJECT_BALLS>,
-}
-
-#[cfg(feature = "shot")]
-impl<'de> DeserializeSeed<'de> for BallsSeed<'_> {
-    type Value = ();
-
-    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<Self::Value, D::Error> {
-        deserializer.deserialize_seq(self)
+fn read_balls(
+    r: &mut Reader<'_>,
+    out: &mut Vec<[f32; 2], MAX_OBJECT_BALLS>,
+) -> Result<(), Problem> {
+    let wrong = |WrongKind| Problem::WrongType {
+        field: "balls",
+        expected: BALLS,
+    };
+    out.clear();
+    if !r.open_array() {
+        return Err(wrong(WrongKind));
     }
-}
-
-#[cfg(feature = "shot")]
-impl<'de> Visitor<'de> for BallsSeed<'_> {
-    type Value = ();
-
-    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(BALLS)
-    }
-
-    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
-        let balls = self.out;
-        balls.clear();
-        while let Some(ball) = seq.next_element::<[f32; 2]>()? {
-            if balls.push(ball).is_err() {
-                return Err(self.diag.fail(Problem::TooMany {
-                    field: "balls",
-                    limit: MAX_OBJECT_BALLS,
-                }));
-            }
-        }
-        Ok(())
-    }
-}
-
-/// `version` and `shutdown` take no fields.
-impl Body for () {
-    const NAME: &'static str = "an empty request body";
-    const EXPECTED: &'static str = "no fields";
-
-    fn read<'de, A: MapAccess<'de>>(mut map: A, diag: &mut Diag) -> Result<Self, A::Error> {
-        match map.next_key::<&str>()? {
-            None => Ok(()),
-            Some(key) => Err(diag.fail(Problem::UnknownField {
-                request: "this request",
-                field: Name::of(key),
-                expected: Self::EXPECTED,
-            })),
+    while r.next_element() {
+        if out.push(r.f32s::<2>().map_err(wrong)?).is_err() {
+            return Err(Problem::TooMany {
+                field: "balls",
+                limit: MAX_OBJECT_BALLS,
+            });
         }
     }
+    Ok(())
 }
 
-/// The `samples` array of one chunk, into a fixed-capacity vector (`out`, in place).
-struct SamplesSeed<'d> {
-    diag: &'d mut Diag,
-    out: &'d mut Vec<i16, MAX_SAMPLES>,
-}
+// The tests need the `shot` request (the crate's default).
+#[cfg(all(test, feature = "shot"))]
+mod oracle;
 
-impl<'de> DeserializeSeed<'de> for SamplesSeed<'_> {
-    type Value = ();
-
-    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<Self::Value, D::Error> {
-        deserializer.deserialize_seq(self)
-    }
-}
-
-impl<'de> Visitor<'de> for SamplesSeed<'_> {
-    type Value = ();
-
-    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(SAMPLES)
-    }
-
-    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
-        let samples = self.out;
-        samples.clear();
-        while let Some(sample) = seq.next_element::<i16>()? {
-            if samples.push(sample).is_err() {
-                return Err(self.diag.fail(Problem::TooMany {
-                    field: "samples",
-                    limit: MAX_SAMPLES,
-                }));
-            }
-        }
-        Ok(())
-    }
-}
+#[cfg(all(test, feature = "shot"))]
+mod tests;

@@ -320,6 +320,215 @@ impl Scanner<'_> {
     }
 }
 
+/// A cursor over a line that [`check`] accepted, for the hand-written decoders
+/// (`decode.rs`): it reads values the way serde-json-core's deserializer did, so every
+/// request gets the answer it got when serde-json-core decoded it, down to the same
+/// quirks (an integer field stops at a `.`, so `0.5` there leaves `.5` where a `,` or
+/// `}` should follow). The syntax is known to be valid, so it only ever has to tell one
+/// kind of value from another; nothing here can panic (`get`, never indexing).
+pub(crate) struct Reader<'a> {
+    scan: Scanner<'a>,
+}
+
+/// A value of the wrong kind for its field (the decoder names the field).
+pub(crate) struct WrongKind;
+
+impl<'a> Reader<'a> {
+    /// At the start of `line`.
+    pub(crate) const fn new(line: &'a [u8]) -> Self {
+        Self {
+            scan: Scanner { s: line, i: 0 },
+        }
+    }
+
+    /// The next byte after any whitespace (not consumed).
+    pub(crate) fn peek(&mut self) -> Option<u8> {
+        self.scan.skip_whitespace();
+        self.scan.peek()
+    }
+
+    fn bump(&mut self) {
+        self.scan.i += 1;
+    }
+
+    /// Consumes `byte` if it comes next (after whitespace).
+    pub(crate) fn eat(&mut self, byte: u8) -> bool {
+        let found = self.peek() == Some(byte);
+        if found {
+            self.bump();
+        }
+        found
+    }
+
+    /// A string's raw text, escapes kept as written (serde-json-core was given no
+    /// unescape buffer, so `"sp\u0065ed"` is not `speed`), the reader past its closing
+    /// quote; `None`, nothing consumed, if the next value is not a string.
+    pub(crate) fn string(&mut self) -> Option<&'a str> {
+        if !self.eat(b'"') {
+            return None;
+        }
+        let start = self.scan.i;
+        let mut escaped = false;
+        while let Some(b) = self.scan.peek() {
+            self.bump();
+            match b {
+                b'\\' => escaped = !escaped,
+                b'"' if !escaped => break,
+                _ => escaped = false,
+            }
+        }
+        let raw = self
+            .scan
+            .s
+            .get(start..self.scan.i.saturating_sub(1))
+            .unwrap_or_default();
+        // Checked UTF-8 by `check`.
+        Some(core::str::from_utf8(raw).unwrap_or_default())
+    }
+
+    /// The next key of an object whose `{` (or previous value) was just read, and its
+    /// `:`; `Ok(None)` at the closing `}` (consumed). `Err` when something else follows
+    /// the previous value: only after an integer that stopped early (`0.5`), which
+    /// serde-json-core answered with a bare error that named no field.
+    pub(crate) fn key(&mut self) -> Result<Option<&'a str>, WrongKind> {
+        if self.eat(b'}') {
+            return Ok(None);
+        }
+        self.eat(b',');
+        let key = self.string().ok_or(WrongKind)?;
+        if !self.eat(b':') {
+            return Err(WrongKind);
+        }
+        Ok(Some(key))
+    }
+
+    /// The text of a number, `-`, digits, `.`, `e` and signs: what serde-json-core
+    /// handed its float parser.
+    fn number_text(&mut self) -> &'a [u8] {
+        self.scan.skip_whitespace();
+        let start = self.scan.i;
+        while let Some(b'0'..=b'9' | b'+' | b'-' | b'.' | b'e' | b'E') = self.scan.peek() {
+            self.bump();
+        }
+        self.scan.s.get(start..self.scan.i).unwrap_or_default()
+    }
+
+    /// An `f32`: a number, as serde-json-core parses it (beyond the f32 range ±inf,
+    /// below it ±0), or `null`, read as NaN.
+    pub(crate) fn f32(&mut self) -> Result<f32, WrongKind> {
+        if self.peek() == Some(b'n') {
+            self.scan.i += 4; // `null`: checked
+            return Ok(f32::NAN);
+        }
+        serde_json_core::de::parse_f32(self.number_text()).ok_or(WrongKind)
+    }
+
+    /// `true` or `false`.
+    pub(crate) fn bool(&mut self) -> Result<bool, WrongKind> {
+        let (value, length) = match self.peek() {
+            Some(b't') => (true, 4),
+            Some(b'f') => (false, 5),
+            _ => return Err(WrongKind),
+        };
+        self.scan.i += length; // checked
+        Ok(value)
+    }
+
+    /// An `i16` as serde-json-core reads one: an optional `-`, then `0` or digits (so
+    /// `1.5` reads 1 and leaves `.5`, which the array then refuses); `Err` for anything
+    /// else or beyond the `i16` range.
+    pub(crate) fn i16(&mut self) -> Result<i16, WrongKind> {
+        let negative = self.eat(b'-');
+        match self.scan.peek() {
+            Some(b'0') => {
+                self.bump();
+                return Ok(0);
+            }
+            Some(b'1'..=b'9') => {}
+            _ => return Err(WrongKind),
+        }
+        let mut value: i16 = 0;
+        while let Some(digit @ b'0'..=b'9') = self.scan.peek() {
+            self.bump();
+            let digit = i16::from(digit - b'0');
+            value = value
+                .checked_mul(10)
+                .and_then(|v| {
+                    if negative {
+                        v.checked_sub(digit)
+                    } else {
+                        v.checked_add(digit)
+                    }
+                })
+                .ok_or(WrongKind)?;
+        }
+        Ok(value)
+    }
+
+    /// A `u32` as serde-json-core reads one: digits without a sign, stopping at the
+    /// first non-digit (so `0.5` reads 0 and leaves `.5`); `Err` for anything else or
+    /// beyond `u32::MAX`.
+    #[cfg(feature = "shot")]
+    pub(crate) fn u32(&mut self) -> Result<u32, WrongKind> {
+        match self.peek() {
+            Some(b'0') => {
+                self.bump();
+                return Ok(0);
+            }
+            Some(b'1'..=b'9') => {}
+            _ => return Err(WrongKind),
+        }
+        let mut value: u32 = 0;
+        while let Some(digit @ b'0'..=b'9') = self.scan.peek() {
+            self.bump();
+            value = value
+                .checked_mul(10)
+                .and_then(|v| v.checked_add(u32::from(digit - b'0')))
+                .ok_or(WrongKind)?;
+        }
+        Ok(value)
+    }
+
+    /// `[x0, x1, ...]`: exactly `N` [`Reader::f32`]s.
+    pub(crate) fn f32s<const N: usize>(&mut self) -> Result<[f32; N], WrongKind> {
+        if !self.eat(b'[') {
+            return Err(WrongKind);
+        }
+        let mut values = [0.0; N];
+        for (i, slot) in values.iter_mut().enumerate() {
+            if i > 0 && !self.eat(b',') {
+                return Err(WrongKind); // `]`: too few
+            }
+            *slot = self.f32()?;
+        }
+        if self.eat(b']') {
+            Ok(values)
+        } else {
+            Err(WrongKind) // too many
+        }
+    }
+
+    /// Steps into an array: `true` if one starts here (its `[` consumed).
+    pub(crate) fn open_array(&mut self) -> bool {
+        self.eat(b'[')
+    }
+
+    /// Before the next element of an array whose `[` or previous element was just read:
+    /// `false` at its `]` (consumed).
+    pub(crate) fn next_element(&mut self) -> bool {
+        if self.eat(b']') {
+            return false;
+        }
+        self.eat(b',');
+        true
+    }
+
+    /// Steps into an object: `true` if one starts here (its `{` consumed).
+    pub(crate) fn open_object(&mut self) -> bool {
+        self.eat(b'{')
+    }
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;

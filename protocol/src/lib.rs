@@ -32,6 +32,7 @@ pub mod answer;
 mod decimal;
 mod decode;
 mod display;
+mod encode;
 pub mod json;
 mod line;
 mod names;

@@ -10,16 +10,16 @@ use cuesight_sensors::{estimate_raw, StrokeConfig, StrokeError, ACCEL_MPS2_PER_L
 use heapless::Vec;
 
 use crate::answer::{
-    Answer, CollideAnswer, ErrorAnswer, ParamsAnswer, ShutdownAnswer, StrokeAnswer,
-    StrokeChunkAnswer, VersionAnswer,
+    Answer, CollideAnswer, ParamsAnswer, ShutdownAnswer, StrokeAnswer, StrokeChunkAnswer,
+    VersionAnswer,
 };
 use crate::decode::decode;
 use crate::line::Event;
 use crate::names::ModelName;
-use crate::problem::{ErrorKind, Message, Name, Problem};
+use crate::problem::{ErrorKind, Name, Problem};
 use crate::request::{Collide, Defaults, Overrides, Request, Stroke};
 #[cfg(feature = "shot")]
-use crate::shot::{Shot, ShotAnswer};
+use crate::shot::{write_shot, Shot};
 use crate::{MAX_ANSWER, MAX_LINE, MAX_SAMPLES, PROTOCOL_VERSION, STROKE_CAPACITY};
 
 /// An answer line: JSON and its `\n`.
@@ -126,7 +126,7 @@ impl Session {
                 // rather than estimate from a window with a hole.
                 self.capture.clear();
                 let answer = Answer::Error(problem.to_answer());
-                write_answer(&answer, out);
+                answer.write(out);
                 Served {
                     request: None,
                     error: Some(problem.kind()),
@@ -167,11 +167,11 @@ impl Session {
                     requests: self.requests,
                     errors: self.errors,
                 });
-                write_answer(&answer, out);
+                answer.write(out);
                 return Ok((name, Control::Shutdown));
             }
         };
-        write_answer(&answer, out);
+        answer.write(out);
         Ok((name, Control::Continue))
     }
 
@@ -183,24 +183,20 @@ impl Session {
     }
 
     /// `shot`, answered into `out` here rather than through [`Answer`], which stays
-    /// small (the firmware's peak stack is the budget).
+    /// small (the firmware's peak stack is the budget), and written by hand
+    /// ([`crate::shot::write_shot`]): serde-json-core's generic serializer for the
+    /// largest answer cost the firmware about 8 KB of flash.
     #[cfg(feature = "shot")]
     fn shot(&self, request: &Shot, out: &mut AnswerLine) -> Result<(), Problem> {
         let prepared = request.prepare(&self.defaults)?;
-        let speed = request.speed;
         let guidance = guide(
             &prepared.scene,
-            speed,
+            request.speed,
             prepared.tip,
             prepared.aim,
             &prepared.setup,
         )?;
-        let answer = ShotAnswer {
-            tip: request.tip,
-            model: prepared.model,
-            guidance,
-        };
-        write_answer(&Tagged("shot", &answer), out);
+        write_shot(out, request.tip, prepared.model, &guidance);
         Ok(())
     }
 
@@ -276,52 +272,10 @@ impl Session {
     }
 }
 
-/// `{"<name>": value}`, as [`Answer`]'s variants serialize.
-#[cfg(feature = "shot")]
-struct Tagged<'a, T>(&'static str, &'a T);
-
-#[cfg(feature = "shot")]
-impl<T: serde::Serialize> serde::Serialize for Tagged<'_, T> {
-    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.serialize_newtype_variant("Answer", 0, self.0, self.1)
-    }
-}
-
 /// The core model for `name`; `reference` is host-only.
 fn core_model(name: ModelName) -> Result<cuesight::Model, Problem> {
     name.core().ok_or(Problem::Unsupported {
         field: "model",
         reason: "reference runs on the host only (cuesight collide --model reference)",
     })
-}
-
-/// Serializes `answer` and its newline into `out`; if it does not fit (never, by the
-/// size tests), an `internal` error line instead.
-fn write_answer<T: serde::Serialize>(answer: &T, out: &mut AnswerLine) {
-    out.clear();
-    // Cannot fail: resizing up to the capacity.
-    let _ = out.resize_default(MAX_ANSWER);
-    let written = serde_json_core::to_slice(answer, out)
-        .ok()
-        .filter(|&n| n < MAX_ANSWER);
-    match written {
-        Some(n) => {
-            out.truncate(n);
-            let _ = out.push(b'\n'); // n < capacity
-        }
-        None => {
-            out.clear();
-            let mut message = Message::new();
-            let _ = message.push_str("the answer did not fit the answer buffer");
-            let fallback = Answer::Error(ErrorAnswer {
-                kind: ErrorKind::Internal,
-                field: None,
-                message,
-            });
-            let _ = out.resize_default(MAX_ANSWER);
-            let n = serde_json_core::to_slice(&fallback, out).unwrap_or(0);
-            out.truncate(n);
-            let _ = out.push(b'\n');
-        }
-    }
 }

@@ -17,9 +17,12 @@ use heapless::Vec;
 use serde::ser::{Serialize, SerializeStruct, Serializer};
 use serde::Deserialize;
 
+use crate::answer::{Answer, ErrorAnswer};
+use crate::encode::Writer;
 use crate::names::{ModelName, RegimeName};
 use crate::problem::Problem;
 use crate::request::{Defaults, Overrides};
+use crate::session::AnswerLine;
 
 /// Most object balls in a `shot` (the scene holds the cue ball and these).
 pub const MAX_OBJECT_BALLS: usize = MAX_BALLS - 1;
@@ -215,6 +218,146 @@ pub struct ShotAnswer {
     pub guidance: Guidance,
 }
 
+impl ShotAnswer {
+    /// The answer line, `{"shot":{...}}` and its `\n`, into `out` (see [`write_shot`]).
+    pub fn write(&self, out: &mut AnswerLine) {
+        write_shot(out, self.tip, self.model, &self.guidance);
+    }
+}
+
+/// Writes the `shot` answer line for `guidance` into `out`: `{"shot":{...}}` and its
+/// `\n`, byte for byte what serde-json-core wrote for a [`ShotAnswer`] (its
+/// `Serialize` is kept for hosts, and as the tests' oracle), by hand (`encode.rs`);
+/// if it does not fit, the `internal` error line.
+pub(crate) fn write_shot(out: &mut AnswerLine, tip: [f32; 2], model: ModelName, g: &Guidance) {
+    let mut w = Writer::new(out);
+    w.tag("shot");
+    w.open();
+    w.str_field("mode", if g.solve.is_some() { "solve" } else { "play" });
+
+    let stroke = &g.stroke;
+    w.key("stroke");
+    w.open();
+    w.f32_field("cue_speed", stroke.cue_speed);
+    w.f32s_field("tip", &tip);
+    w.f32_field("aim_deg", stroke.aim_deg);
+    w.f32s_field("aim", &stroke.aim);
+    w.f32_field("launch_speed", stroke.launch_speed);
+    w.f32s_field("launch_spin", &stroke.launch_spin);
+    w.close();
+
+    w.key("solve");
+    match &g.solve {
+        Some(solve) => {
+            let a = &solve.solution;
+            w.open();
+            w.u32_field("object", solve.target.object as u32);
+            w.u32_field("pocket", solve.target.pocket as u32);
+            w.f32_field("aim_deg", solve.aim_deg);
+            w.f32_field("naive_aim_deg", solve.naive_aim_deg);
+            w.f32_field("correction_deg", a.correction_deg);
+            // m, as the CLI reports it (the solver's figure is in mm).
+            w.f32_field("correction_offset", 1e-3 * a.correction_mm);
+            w.key("thinner");
+            w.bool(a.thinner);
+            w.f32_field("cut_deg", a.cut_angle_deg);
+            w.f32s_field("ghost_ball", &xy(a.ghost_ball));
+            w.f32s_field("naive_ghost_ball", &xy(a.naive_ghost_ball));
+            w.u32_field("evaluations", a.evaluations);
+            w.f32_field("residual", a.residual);
+            w.close();
+        }
+        None => w.null(),
+    }
+
+    w.key("contact");
+    match &g.contact {
+        Some(c) => {
+            w.open();
+            w.u32_field("ball", c.ball as u32);
+            w.f32_field("time", c.time);
+            w.f32s_field("cue_position", &c.cue_position);
+            w.f32s_field("line_of_centres", &c.line_of_centres);
+            w.f32_field("cut_deg", c.cut_deg);
+            w.f32_field("speed", c.speed);
+            w.f32s_field("spin", &c.spin);
+            w.str_field("model", model.name());
+            w.str_field("model_used", c.model_used.name());
+            w.key("error_estimate");
+            optional_f32(&mut w, c.error_estimate);
+            w.str_field("regime", RegimeName::from(c.regime).name());
+            w.f32_field("throw_deg", c.throw_deg);
+            w.close();
+        }
+        None => w.null(),
+    }
+
+    w.key("cue_ball");
+    write_ball(&mut w, &g.cue_ball);
+    w.key("object_ball");
+    match &g.object_ball {
+        Some(ball) => write_ball(&mut w, ball),
+        None => w.null(),
+    }
+
+    w.key("target");
+    match &g.target {
+        Some(t) => {
+            w.open();
+            w.u32_field("object", t.target.object as u32);
+            w.u32_field("pocket", t.target.pocket as u32);
+            w.key("pocketed");
+            w.bool(t.pocketed);
+            w.key("miss");
+            optional_f32(&mut w, t.miss);
+            w.close();
+        }
+        None => w.null(),
+    }
+    w.close();
+    w.close();
+    if !w.finish() {
+        Answer::Error(ErrorAnswer::internal()).write(out);
+    }
+}
+
+/// A number or `null`.
+fn optional_f32(w: &mut Writer<'_>, value: Option<f32>) {
+    match value {
+        Some(value) => w.f32(value),
+        None => w.null(),
+    }
+}
+
+/// One ball's path: the keys of `BallPart`.
+fn write_ball(w: &mut Writer<'_>, b: &BallPath) {
+    let m = &b.motion;
+    w.open();
+    w.u32_field("ball", b.ball as u32);
+    w.f32s_field("start", &xy(m.start));
+    w.f32s_field("velocity", &b.velocity);
+    w.f32s_field("spin", &m.initial_spin.to_array());
+    w.f32_field("hop_height", m.hop_height);
+    w.f32_field("air_time", m.air_time);
+    w.f32s_field("landing", &xy(m.landing()));
+    w.f32_field("sliding_time", m.sliding_time);
+    w.f32s_field("rolling_start", &xy(m.rolling_start()));
+    w.f32s_field("rolling_velocity", &xy(m.rolling_velocity));
+    w.f32_field("rolling_speed", m.rolling_velocity.length());
+    w.f32_field("rolling_direction_deg", b.rolling_direction_deg);
+    w.f32_field("stop_time", m.stop_time());
+    w.f32s_field("rest", &xy(m.rest()));
+    w.str_field("end", b.end.end.name());
+    w.f32_field("end_time", b.end.time);
+    w.f32s_field("end_position", &b.end_position);
+    w.key("pocket");
+    match b.end.pocket {
+        Some(pocket) => w.u32(pocket as u32),
+        None => w.null(),
+    }
+    w.close();
+}
+
 /// `[x, y]` of a vector.
 fn xy(v: cuesight::Vec3) -> [f32; 2] {
     [v.x, v.y]
@@ -385,5 +528,215 @@ impl Serialize for Shot {
         }
         self.with.serialize_fields(&mut s)?;
         s.end()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! The hand-written answer against serde-json-core's serialization of the same
+    //! [`ShotAnswer`] (the encoder it replaced): the same bytes.
+
+    extern crate std;
+
+    use std::format;
+    use std::string::String;
+
+    use cuesight::guidance::guide;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    use super::*;
+    use crate::encode::Writer;
+    use crate::MAX_ANSWER;
+
+    /// `{"shot": answer}`, as the session serialized it before.
+    struct Tagged<'a>(&'a ShotAnswer);
+
+    impl Serialize for Tagged<'_> {
+        fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+            serializer.serialize_newtype_variant("Answer", 0, "shot", self.0)
+        }
+    }
+
+    /// serde-json-core's answer line.
+    fn serde_line(answer: &ShotAnswer) -> String {
+        let mut buf = [0u8; MAX_ANSWER];
+        let n = serde_json_core::to_slice(&Tagged(answer), &mut buf).unwrap();
+        assert!(n < MAX_ANSWER);
+        format!("{}\n", std::str::from_utf8(&buf[..n]).unwrap())
+    }
+
+    fn our_line(answer: &ShotAnswer) -> String {
+        let mut out = AnswerLine::new();
+        answer.write(&mut out);
+        String::from_utf8(out.to_vec()).unwrap()
+    }
+
+    /// A random scene on a random table with a random stroke: an aim near the first
+    /// object ball or a pocket to solve for.
+    fn random_shot(rng: &mut ChaCha8Rng) -> Shot {
+        let table = [TableName::Pool, TableName::Snooker, TableName::Carom][rng.random_range(0..3)];
+        let (length, width) = match table {
+            TableName::Pool => (2.54, 1.27),
+            TableName::Snooker => (3.569, 1.778),
+            TableName::Carom => (2.84, 1.42),
+        };
+        let r = table.balls().radius;
+        let mut centres: std::vec::Vec<[f32; 2]> = std::vec::Vec::new();
+        let count = rng.random_range(2..=16);
+        while centres.len() < count {
+            let p = [
+                rng.random_range(2.0 * r..length - 2.0 * r),
+                rng.random_range(2.0 * r..width - 2.0 * r),
+            ];
+            if centres
+                .iter()
+                .all(|c| (c[0] - p[0]).hypot(c[1] - p[1]) > 2.2 * r)
+            {
+                centres.push(p);
+            }
+        }
+        let [dx, dy] = [centres[1][0] - centres[0][0], centres[1][1] - centres[0][1]];
+        let pockets = table.table().pockets().len() as u32;
+        let solve = pockets > 0 && rng.random_bool(0.5);
+        let models = ["ideal", "kim", "kim-grip", "seed-exact", "exact", "auto"];
+        let with = Overrides {
+            model: ModelName::from_name(models[rng.random_range(0..models.len())]),
+            mu: Some(rng.random_range(0.0..0.1)),
+            ..Overrides::default()
+        };
+        Shot {
+            table,
+            cue: centres[0],
+            balls: centres[1..].iter().copied().collect(),
+            speed: rng.random_range(0.2..7.0),
+            tip: [rng.random_range(-0.3..0.3), rng.random_range(-0.35..0.35)],
+            aim: (!solve).then(|| dy.atan2(dx).to_degrees() + rng.random_range(-4.0..4.0)),
+            object: None,
+            pocket: (pockets > 0 && (solve || rng.random_bool(0.5)))
+                .then(|| rng.random_range(0..pockets)),
+            mu_cloth: None,
+            mu_roll: None,
+            cue_mass: None,
+            tip_restitution: None,
+            with,
+        }
+    }
+
+    #[test]
+    fn answers_are_serde_json_cores_bytes() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let defaults = Defaults::POOL;
+        let (mut guided, mut solved, mut longest) = (0, 0, 0);
+        for _ in 0..3000 {
+            let shot = random_shot(&mut rng);
+            let Ok(prepared) = shot.prepare(&defaults) else {
+                continue;
+            };
+            let Ok(guidance) = guide(
+                &prepared.scene,
+                shot.speed,
+                prepared.tip,
+                prepared.aim,
+                &prepared.setup,
+            ) else {
+                continue;
+            };
+            guided += 1;
+            solved += usize::from(guidance.solve.is_some());
+            let answer = ShotAnswer {
+                tip: shot.tip,
+                model: prepared.model,
+                guidance,
+            };
+            let ours = our_line(&answer);
+            assert_eq!(ours, serde_line(&answer));
+            longest = longest.max(ours.len());
+            // Every optional part absent, and numbers that are not finite (`null`).
+            let mut bare = answer.clone();
+            bare.guidance.solve = None;
+            bare.guidance.contact = None;
+            bare.guidance.object_ball = None;
+            bare.guidance.target = None;
+            bare.guidance.stroke.aim_deg = f32::NAN;
+            bare.guidance.stroke.launch_speed = f32::INFINITY;
+            bare.guidance.cue_ball.end.pocket = Some(usize::MAX);
+            assert_eq!(our_line(&bare), serde_line(&bare));
+        }
+        std::println!("{guided} guided ({solved} solved), longest answer {longest} bytes");
+        assert!(guided > 1000 && solved > 100, "{guided} {solved}");
+    }
+
+    #[test]
+    fn numbers_are_written_as_serde_json_core_writes_them() {
+        use serde::ser::SerializeTuple;
+        struct Both(f32, u32);
+        impl Serialize for Both {
+            fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+                let mut t = serializer.serialize_tuple(2)?;
+                t.serialize_element(&self.0)?;
+                t.serialize_element(&self.1)?;
+                t.end()
+            }
+        }
+        let floats = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            2.0,
+            0.1,
+            1e-7,
+            1.5e10,
+            123_456_790.0,
+            f32::MAX,
+            f32::MIN,
+            f32::MIN_POSITIVE,
+            f32::from_bits(1),
+            -f32::from_bits(0x007f_ffff),
+            f32::EPSILON,
+            f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+        ];
+        let mut rng = ChaCha8Rng::seed_from_u64(8);
+        let randoms: std::vec::Vec<f32> =
+            (0..20_000).map(|_| f32::from_bits(rng.random())).collect();
+        let ints = [0, 1, 9, 10, 99, 100, 65_535, 4_294_967_295];
+        for (i, x) in floats.into_iter().chain(randoms).enumerate() {
+            let n = if i < ints.len() {
+                ints[i]
+            } else {
+                rng.random()
+            };
+            let mut buf = [0u8; 64];
+            let len = serde_json_core::to_slice(&Both(x, n), &mut buf).unwrap();
+            let mut out = AnswerLine::new();
+            let mut w = Writer::new(&mut out);
+            w.raw(b"[");
+            w.f32(x);
+            w.raw(b",");
+            w.u32(n);
+            w.raw(b"]");
+            assert!(w.finish());
+            assert_eq!(&out[..out.len() - 1], &buf[..len], "{x:?} {n}");
+        }
+    }
+
+    #[test]
+    fn an_answer_that_does_not_fit_is_not_cut() {
+        let mut out = AnswerLine::new();
+        let mut w = Writer::new(&mut out);
+        w.raw(&[b' '; MAX_ANSWER - 1]);
+        assert!(w.finish(), "MAX_ANSWER - 1 bytes and the newline fit");
+        let mut w = Writer::new(&mut out);
+        w.raw(&[b' '; MAX_ANSWER]);
+        assert!(!w.finish(), "no room for the newline");
+        assert!(out.is_empty());
+        let mut w = Writer::new(&mut out);
+        w.raw(&[b' '; MAX_ANSWER - 4]);
+        w.raw(b"12345");
+        assert!(!w.finish(), "a piece that does not fit");
+        assert!(out.is_empty());
     }
 }

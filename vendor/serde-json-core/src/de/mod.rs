@@ -867,6 +867,16 @@ where
     from_slice_maybe_escaped(v, Some(string_unescape_buffer))
 }
 
+/// cuesight patch: the number parser behind `deserialize_f32`, for a caller that reads
+/// JSON itself and must read numbers exactly as this crate does (cuesight-protocol's
+/// hand-written request decoder). `text` is the whole number, `[+-]? digits [. digits]?
+/// ([eE] [+-]? digits)?`; `None` if it is not one. Integer arithmetic only, correctly
+/// rounded to f32 but for the documented 19-digit tie case (`float.rs`); beyond the f32
+/// range ±inf, below it ±0.
+pub fn parse_f32(text: &[u8]) -> Option<f32> {
+    float::parse_f32(text)
+}
+
 /// Deserializes an instance of type `T` from bytes of JSON text
 /// Returns the value and the number of bytes consumed in the process
 pub fn from_slice<'a, T>(v: &'a [u8]) -> Result<(T, usize)>
