@@ -2,77 +2,89 @@
 //! `-1`, `0.0000001`, `100000000000000000000`) without core's float formatting, whose
 //! `flt2dec` keeps panic paths the optimiser cannot remove: the digits come from `ryu`
 //! (the same shortest digits; also what serde-json-core serializes numbers with), laid
-//! out here with no indexing that can panic. The firmware's error messages go through
-//! this, so its image can be proved panic-free at link time.
+//! out here with no indexing that can panic, into a [`Sink`] (no `core::fmt`). The
+//! firmware's error messages go through this, so its image can be proved panic-free at
+//! link time.
 
+#[cfg(test)]
 use core::fmt;
 
-/// Displays the wrapped `f32` exactly as `{}` would.
+#[cfg(test)]
+use crate::text::Fmt;
+use crate::text::{ascii, Sink};
+
+/// Displays the wrapped `f32` exactly as `{}` would (see [`plain`]; for the tests).
+#[cfg(test)]
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Plain(pub f32);
 
+#[cfg(test)]
 impl fmt::Display for Plain {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let value = self.0;
-        if value.is_nan() {
-            return f.write_str("NaN");
+        Fmt::write(f, |out| plain(out, self.0))
+    }
+}
+
+/// `value` as `{}` writes it.
+pub(crate) fn plain(f: &mut dyn Sink, value: f32) {
+    if value.is_nan() {
+        return f.put("NaN");
+    }
+    if value.is_infinite() {
+        return f.put(if value < 0.0 { "-inf" } else { "inf" });
+    }
+    if value.is_sign_negative() {
+        f.put("-");
+    }
+    if value == 0.0 {
+        return f.put("0");
+    }
+    let mut buffer = ryu::Buffer::new();
+    // "d.ddd", "d.dddeX", "0.000ddd" or "deX" (finite, non-zero, positive).
+    let text = buffer.format_finite(value.abs()).as_bytes();
+    let (mantissa, exponent) = match text.iter().position(|&c| c == b'e') {
+        Some(at) => (
+            text.get(..at).unwrap_or_default(),
+            parse_exponent(text.get(at + 1..).unwrap_or_default()),
+        ),
+        None => (text, 0),
+    };
+    // Digits of the mantissa and where its point is.
+    let point = mantissa
+        .iter()
+        .position(|&c| c == b'.')
+        .unwrap_or(mantissa.len());
+    let mut digits = [0u8; 24];
+    let mut count = 0usize;
+    for &c in mantissa.iter().filter(|c| c.is_ascii_digit()) {
+        if let Some(slot) = digits.get_mut(count) {
+            *slot = c;
+            count += 1;
         }
-        if value.is_infinite() {
-            return f.write_str(if value < 0.0 { "-inf" } else { "inf" });
-        }
-        if value.is_sign_negative() {
-            f.write_str("-")?;
-        }
-        if value == 0.0 {
-            return f.write_str("0");
-        }
-        let mut buffer = ryu::Buffer::new();
-        // "d.ddd", "d.dddeX", "0.000ddd" or "deX" (finite, non-zero, positive).
-        let text = buffer.format_finite(value.abs()).as_bytes();
-        let (mantissa, exponent) = match text.iter().position(|&c| c == b'e') {
-            Some(at) => (
-                text.get(..at).unwrap_or_default(),
-                parse_exponent(text.get(at + 1..).unwrap_or_default()),
-            ),
-            None => (text, 0),
-        };
-        // Digits of the mantissa and where its point is.
-        let point = mantissa
-            .iter()
-            .position(|&c| c == b'.')
-            .unwrap_or(mantissa.len());
-        let mut digits = [0u8; 24];
-        let mut count = 0usize;
-        for &c in mantissa.iter().filter(|c| c.is_ascii_digit()) {
-            if let Some(slot) = digits.get_mut(count) {
-                *slot = c;
-                count += 1;
-            }
-        }
-        let digits = digits.get(..count).unwrap_or_default();
-        // Drop leading zeros (each moves the point left) and trailing zeros.
-        let leading = digits.iter().take_while(|&&c| c == b'0').count();
-        let digits = digits.get(leading..).unwrap_or_default();
-        let trailing = digits.iter().rev().take_while(|&&c| c == b'0').count();
-        let digits = digits
-            .get(..digits.len().saturating_sub(trailing))
-            .unwrap_or_default();
-        // value = 0.DIGITS × 10^point
-        let point = point as i32 - leading as i32 + exponent;
-        let len = digits.len() as i32;
-        if point <= 0 {
-            f.write_str("0.")?;
-            zeros(f, -point)?;
-            write_digits(f, digits)
-        } else if point >= len {
-            write_digits(f, digits)?;
-            zeros(f, point - len)
-        } else {
-            let (int, frac) = digits.split_at(point as usize);
-            write_digits(f, int)?;
-            f.write_str(".")?;
-            write_digits(f, frac)
-        }
+    }
+    let digits = digits.get(..count).unwrap_or_default();
+    // Drop leading zeros (each moves the point left) and trailing zeros.
+    let leading = digits.iter().take_while(|&&c| c == b'0').count();
+    let digits = digits.get(leading..).unwrap_or_default();
+    let trailing = digits.iter().rev().take_while(|&&c| c == b'0').count();
+    let digits = digits
+        .get(..digits.len().saturating_sub(trailing))
+        .unwrap_or_default();
+    // value = 0.DIGITS × 10^point
+    let point = point as i32 - leading as i32 + exponent;
+    let len = digits.len() as i32;
+    if point <= 0 {
+        f.put("0.");
+        zeros(f, -point);
+        f.put(ascii(digits));
+    } else if point >= len {
+        f.put(ascii(digits));
+        zeros(f, point - len);
+    } else {
+        let (int, frac) = digits.split_at(point as usize);
+        f.put(ascii(int));
+        f.put(".");
+        f.put(ascii(frac));
     }
 }
 
@@ -92,16 +104,10 @@ fn parse_exponent(text: &[u8]) -> i32 {
     }
 }
 
-fn zeros(f: &mut fmt::Formatter<'_>, count: i32) -> fmt::Result {
+fn zeros(f: &mut dyn Sink, count: i32) {
     for _ in 0..count {
-        f.write_str("0")?;
+        f.put("0");
     }
-    Ok(())
-}
-
-fn write_digits(f: &mut fmt::Formatter<'_>, digits: &[u8]) -> fmt::Result {
-    // ASCII digits only.
-    f.write_str(core::str::from_utf8(digits).unwrap_or("?"))
 }
 
 #[cfg(test)]

@@ -9,6 +9,8 @@
 
 use core::fmt;
 
+use crate::text::{unsigned, Fmt, Sink};
+
 /// Deepest nesting of arrays and objects accepted (a request needs four).
 pub const MAX_DEPTH: u32 = 32;
 
@@ -74,7 +76,16 @@ pub struct Syntax {
 
 impl fmt::Display for Syntax {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} at byte {}", self.reason.describe(), self.at)
+        Fmt::write(f, |out| self.write_message(out))
+    }
+}
+
+impl Syntax {
+    /// `<reason> at byte <offset>`.
+    pub(crate) fn write_message(&self, f: &mut dyn Sink) {
+        f.put(self.reason.describe());
+        f.put(" at byte ");
+        unsigned(f, self.at);
     }
 }
 

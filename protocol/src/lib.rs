@@ -41,6 +41,7 @@ pub mod request;
 mod session;
 #[cfg(feature = "shot")]
 pub mod shot;
+mod text;
 
 pub use answer::{Answer, CollideAnswer, ErrorAnswer, InputEcho, StrokeAnswer, StrokeChunkAnswer};
 pub use decode::decode;

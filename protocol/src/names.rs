@@ -6,6 +6,8 @@ use cuesight::{Model, Regime};
 use serde::de::{self, Deserializer, Visitor};
 use serde::{Deserialize, Serialize, Serializer};
 
+use crate::text::{list, Fmt, Sink};
+
 /// A collision model, by its wire name: a core model by [`Model::name`] (`ideal`, `kim`,
 /// `kim-grip`, ...), or `reference`.
 ///
@@ -81,18 +83,13 @@ pub(crate) struct ModelNames;
 
 impl fmt::Display for ModelNames {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let names = ModelName::names();
-        let count = names.clone().count();
-        for (i, name) in names.enumerate() {
-            match i {
-                0 => {}
-                i if i + 1 == count => f.write_str(" or ")?,
-                _ => f.write_str(", ")?,
-            }
-            f.write_str(name)?;
-        }
-        Ok(())
+        Fmt::write(f, model_names)
     }
+}
+
+/// [`ModelNames`]' text.
+pub(crate) fn model_names(f: &mut dyn Sink) {
+    list(f, ModelName::names(), " or ");
 }
 
 impl Serialize for ModelName {

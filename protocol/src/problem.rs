@@ -1,7 +1,7 @@
 //! Everything that can be wrong with a request line, and the `{"error":{...}}` answer
 //! that names it.
 
-use core::fmt::{self, Write};
+use core::fmt;
 
 use serde::{Deserialize, Serialize};
 
@@ -9,10 +9,11 @@ use cuesight::aim::AimError;
 use cuesight_sensors::{ConfigField, StrokeError};
 
 use crate::answer::ErrorAnswer;
-use crate::decimal::Plain;
+use crate::decimal::plain;
 use crate::json::Syntax;
-use crate::names::ModelNames;
+use crate::names::model_names;
 use crate::request::Request;
+use crate::text::{list, push_truncated, unsigned, Fmt, Sink};
 
 /// Longest name (field, request, board) kept in an answer, in bytes.
 pub const NAME_LEN: usize = 32;
@@ -47,25 +48,6 @@ impl fmt::Display for Name {
 
 /// An error message, cut to [`MESSAGE_LEN`] bytes.
 pub type Message = heapless::String<MESSAGE_LEN>;
-
-/// Appends as much of `text` as fits, never splitting a character.
-fn push_truncated<const N: usize>(out: &mut heapless::String<N>, text: &str) {
-    for c in text.chars() {
-        if out.push(c).is_err() {
-            break;
-        }
-    }
-}
-
-/// `fmt::Write` into a fixed string that drops what does not fit instead of failing.
-struct Truncating<'a, const N: usize>(&'a mut heapless::String<N>);
-
-impl<const N: usize> Write for Truncating<'_, N> {
-    fn write_str(&mut self, s: &str) -> fmt::Result {
-        push_truncated(self.0, s);
-        Ok(())
-    }
-}
 
 /// The class of an error, as on the wire (`"kind"`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -286,8 +268,7 @@ impl Problem {
     /// The error answer for this problem.
     pub fn to_answer(&self) -> ErrorAnswer {
         let mut message = Message::new();
-        // Truncating never fails.
-        let _ = write!(Truncating(&mut message), "{self}");
+        self.write_message(&mut message);
         ErrorAnswer {
             kind: self.kind(),
             field: self.field(),
@@ -296,73 +277,97 @@ impl Problem {
     }
 }
 
-/// `a, b, c` from a list of names.
-struct List<'a>(&'a [&'a str]);
-
-impl fmt::Display for List<'_> {
+impl fmt::Display for Problem {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        for (i, name) in self.0.iter().enumerate() {
-            if i > 0 {
-                f.write_str(", ")?;
-            }
-            f.write_str(name)?;
-        }
-        Ok(())
+        Fmt::write(f, |out| self.write_message(out))
     }
 }
 
-impl fmt::Display for Problem {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+impl Problem {
+    /// The one-line message (the answer's `message`, cut to [`MESSAGE_LEN`]; the
+    /// `Display` text), built piece by piece: no `core::fmt` on the device.
+    pub(crate) fn write_message(&self, f: &mut dyn Sink) {
         match self {
-            Problem::Syntax(syntax) => write!(f, "malformed JSON: {syntax}"),
-            Problem::LineTooLong { length, limit } => write!(
-                f,
-                "line too long: {length} bytes before the newline, the limit is {limit}"
-            ),
+            Problem::Syntax(syntax) => {
+                f.put("malformed JSON: ");
+                syntax.write_message(f);
+            }
+            Problem::LineTooLong { length, limit } => {
+                f.put("line too long: ");
+                unsigned(f, *length);
+                f.put(" bytes before the newline, the limit is ");
+                unsigned(f, *limit);
+            }
             Problem::NotARequest(why) => {
-                f.write_str("not a request: ")?;
-                f.write_str(match why {
+                f.put("not a request: ");
+                f.put(match why {
                     NotARequest::NotAnObject => "expected a JSON object",
                     NotARequest::Empty => "the object is empty",
                     NotARequest::SeveralKeys => "one request per line, found several keys",
-                })?;
-                write!(
-                    f,
-                    " (one of {} as its only key, e.g. {{\"version\":{{}}}})",
-                    List(Request::NAMES)
-                )
+                });
+                f.put(" (one of ");
+                list(f, Request::NAMES.iter().copied(), ", ");
+                f.put(" as its only key, e.g. {\"version\":{}})");
             }
-            Problem::UnknownRequest(name) => write!(
-                f,
-                "unknown request \"{name}\", expected one of {}",
-                List(Request::NAMES)
-            ),
+            Problem::UnknownRequest(name) => {
+                f.put("unknown request \"");
+                f.put(name.as_str());
+                f.put("\", expected one of ");
+                list(f, Request::NAMES.iter().copied(), ", ");
+            }
             Problem::UnknownField {
                 request,
                 field,
                 expected,
-            } => write!(
-                f,
-                "unknown field \"{field}\" in {request}, expected {expected}"
-            ),
-            Problem::DuplicateField(field) => write!(f, "field \"{field}\" given twice"),
-            Problem::MissingField(field) => write!(f, "missing field \"{field}\""),
+            } => {
+                f.put("unknown field \"");
+                f.put(field.as_str());
+                f.put("\" in ");
+                f.put(request);
+                f.put(", expected ");
+                f.put(expected);
+            }
+            Problem::DuplicateField(field) => {
+                f.put("field \"");
+                f.put(field);
+                f.put("\" given twice");
+            }
+            Problem::MissingField(field) => {
+                f.put("missing field \"");
+                f.put(field);
+                f.put("\"");
+            }
             Problem::WrongType { field, expected } | Problem::InvalidValue { field, expected } => {
-                write!(f, "{field}: expected {expected}")
+                f.put(field);
+                f.put(": expected ");
+                f.put(expected);
             }
             Problem::UnknownModel(name) => {
-                write!(f, "model: unknown model \"{name}\", expected {ModelNames}")
+                f.put("model: unknown model \"");
+                f.put(name.as_str());
+                f.put("\", expected ");
+                model_names(f);
             }
             Problem::Conflict { field, with } => {
-                write!(f, "{field} and {with} cannot both be given")
+                f.put(field);
+                f.put(" and ");
+                f.put(with);
+                f.put(" cannot both be given");
             }
             Problem::TooMany { field, limit } => {
-                write!(f, "{field}: more than {limit}, the buffer's capacity")
+                f.put(field);
+                f.put(": more than ");
+                unsigned(f, *limit);
+                f.put(", the buffer's capacity");
             }
             Problem::Value(error) => write_value_error(f, error),
             Problem::Stroke(error) => write_stroke_error(f, error),
-            Problem::Unsupported { field, reason } => write!(f, "{field}: {reason}"),
-            Problem::NoAim(error) => f.write_str(match error {
+            Problem::Unsupported { field, reason } => {
+                f.put(field);
+                f.put(": ");
+                f.put(reason);
+            }
+            Problem::NoAim(error) => f.put(match error {
                 AimError::ObjectBallNotHit => {
                     "no aim: at the ghost-ball aim the cue ball does not reach the object ball first (another ball in the way, or too slow)"
                 }
@@ -398,61 +403,338 @@ fn stroke_field(error: &StrokeError) -> &'static str {
     }
 }
 
-fn write_stroke_error(f: &mut fmt::Formatter<'_>, error: &StrokeError) -> fmt::Result {
+fn write_stroke_error(f: &mut dyn Sink, error: &StrokeError) {
     match error {
         StrokeError::InvalidConfig(ConfigField::SampleRate) => {
-            f.write_str("rate_hz must be in [500, 100000] Hz")
+            f.put("rate_hz must be in [500, 100000] Hz")
         }
-        StrokeError::InvalidConfig(ConfigField::FullScale) => f.write_str(
+        StrokeError::InvalidConfig(ConfigField::FullScale) => f.put(
             "scale: the full scale, 32768 x |scale|, must exceed the 8 g impact threshold",
         ),
         StrokeError::InvalidConfig(field) => {
-            write!(f, "stroke estimator setting out of range: {field:?}")
+            f.put("stroke estimator setting out of range: ");
+            f.put(config_field_name(*field));
         }
-        StrokeError::NotFinite { .. } => f.write_str("scale must be a finite, non-zero number"),
-        StrokeError::TooShort { len, min } => write!(
-            f,
-            "samples: {len} samples, at least {min} are needed at this rate"
-        ),
-        StrokeError::NotAtRest => f.write_str(
+        StrokeError::NotFinite { .. } => f.put("scale must be a finite, non-zero number"),
+        StrokeError::TooShort { len, min } => {
+            f.put("samples: ");
+            unsigned(f, *len);
+            f.put(" samples, at least ");
+            unsigned(f, *min);
+            f.put(" are needed at this rate");
+        }
+        StrokeError::NotAtRest => f.put(
             "samples: no rest of 150 ms before an impact (start the capture with the cue held still)",
         ),
         StrokeError::NoImpact => {
-            f.write_str("samples: no impact (a deceleration of 8 g) after the rest")
+            f.put("samples: no impact (a deceleration of 8 g) after the rest")
         }
-        StrokeError::Saturated { index } => write!(
-            f,
-            "samples: sample {index} reached the sensor's full scale before the impact"
-        ),
-        StrokeError::NotForward { speed } => write!(
-            f,
-            "samples: the cue speed at impact integrates to {} m/s, not forward (a negative scale flips the axis)",
-            Plain(*speed)
-        ),
-        StrokeError::LengthMismatch { accel, pitch } => write!(
-            f,
-            "samples: {accel} accelerometer and {pitch} gyro samples"
-        ),
+        StrokeError::Saturated { index } => {
+            f.put("samples: sample ");
+            unsigned(f, *index);
+            f.put(" reached the sensor's full scale before the impact");
+        }
+        StrokeError::NotForward { speed } => {
+            f.put("samples: the cue speed at impact integrates to ");
+            plain(f, *speed);
+            f.put(" m/s, not forward (a negative scale flips the axis)");
+        }
+        StrokeError::LengthMismatch { accel, pitch } => {
+            f.put("samples: ");
+            unsigned(f, *accel);
+            f.put(" accelerometer and ");
+            unsigned(f, *pitch);
+            f.put(" gyro samples");
+        }
         StrokeError::Strike(error) => write_value_error(f, error),
     }
 }
 
-/// The core error's own `Display` text, with the value written by [`Plain`] rather
+/// A [`ConfigField`] as `{:?}` writes it.
+const fn config_field_name(field: ConfigField) -> &'static str {
+    match field {
+        ConfigField::SampleRate => "SampleRate",
+        ConfigField::ImpactThreshold => "ImpactThreshold",
+        ConfigField::OnsetDrop => "OnsetDrop",
+        ConfigField::MinRest => "MinRest",
+        ConfigField::RestNoiseLimit => "RestNoiseLimit",
+        ConfigField::RestLevelTolerance => "RestLevelTolerance",
+        ConfigField::MotionFloor => "MotionFloor",
+        ConfigField::FullScale => "FullScale",
+        ConfigField::CueElevation => "CueElevation",
+    }
+}
+
+/// The core error's own `Display` text, with the value written by [`plain`] rather
 /// than core's float formatting (which has panic paths; see `decimal.rs`).
-fn write_value_error(f: &mut fmt::Formatter<'_>, error: &cuesight::Error) -> fmt::Result {
+fn write_value_error(f: &mut dyn Sink, error: &cuesight::Error) {
     match error {
         cuesight::Error::NotFinite { field } => {
-            write!(f, "{} must be a finite number", field.name())
+            f.put(field.name());
+            f.put(" must be a finite number");
         }
-        cuesight::Error::OutOfRange { field, value } => write!(
-            f,
-            "{} = {} is outside {}",
-            field.name(),
-            Plain(*value),
-            field.valid_range()
-        ),
+        cuesight::Error::OutOfRange { field, value } => {
+            f.put(field.name());
+            f.put(" = ");
+            plain(f, *value);
+            f.put(" is outside ");
+            f.put(field.valid_range());
+        }
         cuesight::Error::NumericalFailure => {
-            f.write_str("internal numerical failure (non-finite result)")
+            f.put("internal numerical failure (non-finite result)")
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! The messages against the `write!`s they replaced (kept here as the oracle).
+
+    extern crate std;
+
+    use std::format;
+    use std::string::{String, ToString};
+
+    use cuesight::Field;
+    use cuesight_sensors::ConfigField;
+
+    use super::*;
+    use crate::decimal::Plain;
+    use crate::json::SyntaxReason;
+    use crate::names::ModelNames;
+
+    /// The former `Display` of [`Problem`], with `format!`.
+    fn oracle(problem: &Problem) -> String {
+        let names = Request::NAMES.join(", ");
+        let value = |error: &cuesight::Error| match error {
+            cuesight::Error::NotFinite { field } => {
+                format!("{} must be a finite number", field.name())
+            }
+            cuesight::Error::OutOfRange { field, value } => format!(
+                "{} = {} is outside {}",
+                field.name(),
+                Plain(*value),
+                field.valid_range()
+            ),
+            cuesight::Error::NumericalFailure => {
+                "internal numerical failure (non-finite result)".to_string()
+            }
+        };
+        match problem {
+            Problem::Syntax(syntax) => format!(
+                "malformed JSON: {} at byte {}",
+                syntax.reason.describe(),
+                syntax.at
+            ),
+            Problem::LineTooLong { length, limit } => format!(
+                "line too long: {length} bytes before the newline, the limit is {limit}"
+            ),
+            Problem::NotARequest(why) => format!(
+                "not a request: {} (one of {names} as its only key, e.g. {{\"version\":{{}}}})",
+                match why {
+                    NotARequest::NotAnObject => "expected a JSON object",
+                    NotARequest::Empty => "the object is empty",
+                    NotARequest::SeveralKeys => "one request per line, found several keys",
+                }
+            ),
+            Problem::UnknownRequest(name) => {
+                format!("unknown request \"{name}\", expected one of {names}")
+            }
+            Problem::UnknownField {
+                request,
+                field,
+                expected,
+            } => format!("unknown field \"{field}\" in {request}, expected {expected}"),
+            Problem::DuplicateField(field) => format!("field \"{field}\" given twice"),
+            Problem::MissingField(field) => format!("missing field \"{field}\""),
+            Problem::WrongType { field, expected } | Problem::InvalidValue { field, expected } => {
+                format!("{field}: expected {expected}")
+            }
+            Problem::UnknownModel(name) => {
+                format!("model: unknown model \"{name}\", expected {ModelNames}")
+            }
+            Problem::Conflict { field, with } => format!("{field} and {with} cannot both be given"),
+            Problem::TooMany { field, limit } => {
+                format!("{field}: more than {limit}, the buffer's capacity")
+            }
+            Problem::Value(error) => value(error),
+            Problem::Stroke(error) => match error {
+                StrokeError::InvalidConfig(ConfigField::SampleRate) => {
+                    "rate_hz must be in [500, 100000] Hz".to_string()
+                }
+                StrokeError::InvalidConfig(ConfigField::FullScale) => {
+                    "scale: the full scale, 32768 x |scale|, must exceed the 8 g impact threshold"
+                        .to_string()
+                }
+                StrokeError::InvalidConfig(field) => {
+                    format!("stroke estimator setting out of range: {field:?}")
+                }
+                StrokeError::NotFinite { .. } => "scale must be a finite, non-zero number".to_string(),
+                StrokeError::TooShort { len, min } => {
+                    format!("samples: {len} samples, at least {min} are needed at this rate")
+                }
+                StrokeError::NotAtRest => "samples: no rest of 150 ms before an impact (start the capture with the cue held still)".to_string(),
+                StrokeError::NoImpact => {
+                    "samples: no impact (a deceleration of 8 g) after the rest".to_string()
+                }
+                StrokeError::Saturated { index } => format!(
+                    "samples: sample {index} reached the sensor's full scale before the impact"
+                ),
+                StrokeError::NotForward { speed } => format!(
+                    "samples: the cue speed at impact integrates to {} m/s, not forward (a negative scale flips the axis)",
+                    Plain(*speed)
+                ),
+                StrokeError::LengthMismatch { accel, pitch } => {
+                    format!("samples: {accel} accelerometer and {pitch} gyro samples")
+                }
+                StrokeError::Strike(error) => value(error),
+            },
+            Problem::Unsupported { field, reason } => format!("{field}: {reason}"),
+            Problem::NoAim(error) => match error {
+                AimError::ObjectBallNotHit => "no aim: at the ghost-ball aim the cue ball does not reach the object ball first (another ball in the way, or too slow)",
+                AimError::PocketUnreachable => "no aim: the object ball cannot reach the pocket (it stops short, or the cut is too thin)",
+                AimError::NotConverged | AimError::Invalid(_) => {
+                    "no aim: the solver did not converge (the cut may be too thin)"
+                }
+            }
+            .to_string(),
+        }
+    }
+
+    /// The first [`MESSAGE_LEN`] bytes of `text`, at a character boundary, as the
+    /// answer's message keeps them.
+    fn cut(text: &str) -> String {
+        let mut out = String::new();
+        for c in text.chars() {
+            if out.len() + c.len_utf8() > MESSAGE_LEN {
+                break;
+            }
+            out.push(c);
+        }
+        out
+    }
+
+    fn problems() -> std::vec::Vec<Problem> {
+        let long = "x\u{e9}\u{1f600}".repeat(20);
+        let names = ["speed", "", "\u{e9}\"\\", long.as_str()];
+        let values = [
+            0.0,
+            -0.0,
+            1.5,
+            -1e-7,
+            3e38,
+            f32::NAN,
+            f32::INFINITY,
+            f32::from_bits(1),
+        ];
+        let mut all = std::vec![
+            Problem::LineTooLong {
+                length: 12_000,
+                limit: 3072
+            },
+            Problem::LineTooLong {
+                length: usize::MAX,
+                limit: 0
+            },
+            Problem::NotARequest(NotARequest::NotAnObject),
+            Problem::NotARequest(NotARequest::Empty),
+            Problem::NotARequest(NotARequest::SeveralKeys),
+            Problem::DuplicateField("mu"),
+            Problem::MissingField("speed"),
+            Problem::WrongType {
+                field: "spin",
+                expected: "[wx, wy, wz], three numbers (rad/s)"
+            },
+            Problem::InvalidValue {
+                field: "table",
+                expected: "pool, snooker or carom"
+            },
+            Problem::Conflict {
+                field: "roll",
+                with: "spin"
+            },
+            Problem::TooMany {
+                field: "samples",
+                limit: 256
+            },
+            Problem::Unsupported {
+                field: "model",
+                reason: "reference runs on the host only"
+            },
+            Problem::Value(cuesight::Error::NumericalFailure),
+            Problem::NoAim(AimError::ObjectBallNotHit),
+            Problem::NoAim(AimError::PocketUnreachable),
+            Problem::NoAim(AimError::NotConverged),
+            Problem::Stroke(StrokeError::NotFinite { index: 3 }),
+            Problem::Stroke(StrokeError::TooShort { len: 3, min: 162 }),
+            Problem::Stroke(StrokeError::NotAtRest),
+            Problem::Stroke(StrokeError::NoImpact),
+            Problem::Stroke(StrokeError::Saturated { index: 1234 }),
+            Problem::Stroke(StrokeError::LengthMismatch {
+                accel: 10,
+                pitch: 0
+            }),
+        ];
+        for at in [0, 9, 3071] {
+            for reason in [
+                SyntaxReason::UnexpectedEnd,
+                SyntaxReason::InvalidUtf8,
+                SyntaxReason::TrailingCharacters,
+            ] {
+                all.push(Problem::Syntax(Syntax { at, reason }));
+            }
+        }
+        for name in names {
+            all.push(Problem::UnknownRequest(Name::of(name)));
+            all.push(Problem::UnknownModel(Name::of(name)));
+            for (request, expected) in [
+                ("shot", "table, cue, balls, speed, tip, aim, object, pocket, mu_cloth, mu_roll, cue_mass, tip_restitution, mu, mu_b, mu_c, restitution, mu_s, mass, model"),
+                ("this request", "no fields"),
+            ] {
+                all.push(Problem::UnknownField { request, field: Name::of(name), expected });
+            }
+        }
+        for field in [
+            ConfigField::SampleRate,
+            ConfigField::ImpactThreshold,
+            ConfigField::OnsetDrop,
+            ConfigField::MinRest,
+            ConfigField::RestNoiseLimit,
+            ConfigField::RestLevelTolerance,
+            ConfigField::MotionFloor,
+            ConfigField::FullScale,
+            ConfigField::CueElevation,
+        ] {
+            all.push(Problem::Stroke(StrokeError::InvalidConfig(field)));
+        }
+        for value in values {
+            all.push(Problem::Stroke(StrokeError::NotForward { speed: value }));
+            for field in [
+                Field::Speed,
+                Field::CutAngle,
+                Field::Friction,
+                Field::Pocket,
+                Field::BallIndex,
+            ] {
+                let error = cuesight::Error::OutOfRange { field, value };
+                all.push(Problem::Value(error));
+                all.push(Problem::Stroke(StrokeError::Strike(error)));
+                all.push(Problem::Value(cuesight::Error::NotFinite { field }));
+            }
+        }
+        all
+    }
+
+    #[test]
+    fn messages_are_the_former_formatted_text() {
+        for problem in problems() {
+            let want = oracle(&problem);
+            assert_eq!(problem.to_string(), want, "{problem:?}");
+            assert_eq!(
+                problem.to_answer().message.as_str(),
+                cut(&want),
+                "{problem:?}"
+            );
         }
     }
 }
