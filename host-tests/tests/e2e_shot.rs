@@ -1,6 +1,7 @@
 //! End to end, `shot`: the firmware image built with `--features shot`, booted in QEMU
 //! (mps2-an386), answers seeded `shot` requests byte for byte as the host session does
-//! (and the host session answers as `cuesight shot --json`: `tests/shot_protocol.rs`).
+//! (and the host session answers as `cuesight shot --json`: `tests/shot_protocol.rs`),
+//! with its peak stack within the 8 KiB budget.
 //!
 //! `#[ignore]`d in plain `cargo test`: it needs that image. `cargo xtask test` builds it
 //! and runs this with `CUESIGHT_FIRMWARE_ELF` pointing at it.
@@ -18,6 +19,9 @@ use serde_json::{json, Value};
 const ANSWER_TIMEOUT: Duration = Duration::from_secs(60);
 /// Scenes sent (the same seed as the protocol test: its answers are the CLI's).
 const SCENES: usize = 60;
+/// Issue 6's stack budget (bytes), as `cargo xtask test` enforces it on the release
+/// image's demo session.
+const STACK_BUDGET: u32 = 8 * 1024;
 
 #[test]
 #[ignore = "needs the firmware built with --features shot (cargo xtask test)"]
@@ -61,12 +65,15 @@ fn firmware_answers_shot_requests_as_the_host_session() {
         let rest = line.split("peak stack ").nth(1)?;
         rest.split_whitespace().next()?.parse::<u32>().ok()
     });
-    // Reported, not asserted: the 8 KiB stack budget is enforced on the release image
-    // (the demo session step), which leaves `shot` out; this image is over the flash
-    // budget too (docs/reliability.md lists both as open).
-    if let Some(peak) = peak {
-        println!("e2e shot: peak stack {peak} bytes (the release image's budget: 8,192)");
-    }
+    // Issue 6's stack budget holds for this image too (the shot's solve is the deepest
+    // path in the firmware); its flash is over budget, which is why the release image
+    // leaves `shot` out (docs/reliability.md).
+    let peak = peak.expect("a 'peak stack' line in the decoded log (needs defmt-print)");
+    println!("e2e shot: peak stack {peak} bytes (budget {STACK_BUDGET})");
+    assert!(
+        peak <= STACK_BUDGET,
+        "peak stack {peak} bytes exceeds the budget of {STACK_BUDGET}"
+    );
     println!(
         "e2e shot: {guided} guided and {refused} refused shot requests answered by the firmware \
          exactly as by the host session; {:.1} s",

@@ -26,6 +26,58 @@ use crate::MAX_SAMPLES;
 
 /// Decode one request line (without its newline).
 pub fn decode(line: &[u8]) -> Result<Request, Problem> {
+    let (kind, mut r) = open(line)?;
+    let request = match kind {
+        Kind::Collide => Request::Collide(read_collide(&mut r)?),
+        Kind::Params => Request::Params(read_params(&mut r)?),
+        Kind::Stroke => Request::Stroke(read_stroke(&mut r)?),
+        #[cfg(feature = "shot")]
+        Kind::Shot => Request::Shot(read_shot(&mut r)?),
+        Kind::Version => {
+            read_empty(&mut r, "version")?;
+            Request::Version
+        }
+        Kind::Shutdown => {
+            read_empty(&mut r, "shutdown")?;
+            Request::Shutdown
+        }
+    };
+    close(&mut r)?;
+    Ok(request)
+}
+
+/// Which request a line holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Kind {
+    Collide,
+    Params,
+    Stroke,
+    #[cfg(feature = "shot")]
+    Shot,
+    Version,
+    Shutdown,
+}
+
+impl Kind {
+    /// The wire name.
+    pub(crate) const fn name(self) -> &'static str {
+        match self {
+            Kind::Collide => "collide",
+            Kind::Params => "params",
+            Kind::Stroke => "stroke",
+            #[cfg(feature = "shot")]
+            Kind::Shot => "shot",
+            Kind::Version => "version",
+            Kind::Shutdown => "shutdown",
+        }
+    }
+}
+
+/// The first step of [`decode`]: the syntax check, then the request object and its
+/// name, the reader left before the body (read with `read_*`, then [`close`]). The
+/// session answers each request in its own function, reading the body there, so the
+/// largest request's body is never on the stack of another's answer.
+pub(crate) fn open(line: &[u8]) -> Result<(Kind, Reader<'_>), Problem> {
     json::check(line).map_err(Problem::Syntax)?;
     let mut r = Reader::new(line);
     if !r.open_object() {
@@ -36,12 +88,12 @@ pub fn decode(line: &[u8]) -> Result<Request, Problem> {
         Ok(None) => return Err(Problem::NotARequest(NotARequest::Empty)),
         Err(WrongKind) => return Err(Problem::NotARequest(NotARequest::NotAnObject)),
     };
-    let request = match tag {
-        "collide" => Request::Collide(read_collide(&mut r)?),
-        "params" => Request::Params(read_params(&mut r)?),
-        "stroke" => Request::Stroke(read_stroke(&mut r)?),
+    let kind = match tag {
+        "collide" => Kind::Collide,
+        "params" => Kind::Params,
+        "stroke" => Kind::Stroke,
         #[cfg(feature = "shot")]
-        "shot" => Request::Shot(read_shot(&mut r)?),
+        "shot" => Kind::Shot,
         #[cfg(not(feature = "shot"))]
         "shot" => {
             return Err(Problem::Unsupported {
@@ -49,18 +101,17 @@ pub fn decode(line: &[u8]) -> Result<Request, Problem> {
                 reason: "this firmware image has no shot guidance (build it with --features shot)",
             })
         }
-        "version" => {
-            read_empty(&mut r, "version")?;
-            Request::Version
-        }
-        "shutdown" => {
-            read_empty(&mut r, "shutdown")?;
-            Request::Shutdown
-        }
+        "version" => Kind::Version,
+        "shutdown" => Kind::Shutdown,
         other => return Err(Problem::UnknownRequest(Name::of(other))),
     };
+    Ok((kind, r))
+}
+
+/// The last step of [`decode`]: after the body, the request object must end.
+pub(crate) fn close(r: &mut Reader<'_>) -> Result<(), Problem> {
     match r.key() {
-        Ok(None) => Ok(request),
+        Ok(None) => Ok(()),
         _ => Err(Problem::NotARequest(NotARequest::SeveralKeys)),
     }
 }
@@ -190,7 +241,7 @@ fn parse_model(name: Option<&str>) -> Result<Option<ModelName>, Problem> {
     }
 }
 
-fn read_params(r: &mut Reader<'_>) -> Result<Overrides, Problem> {
+pub(crate) fn read_params(r: &mut Reader<'_>) -> Result<Overrides, Problem> {
     open_body(r, "params", OBJECT)?;
     let mut with = Overrides::default();
     let mut model = None;
@@ -203,7 +254,7 @@ fn read_params(r: &mut Reader<'_>) -> Result<Overrides, Problem> {
     Ok(with)
 }
 
-fn read_collide(r: &mut Reader<'_>) -> Result<Collide, Problem> {
+pub(crate) fn read_collide(r: &mut Reader<'_>) -> Result<Collide, Problem> {
     open_body(r, "collide", OBJECT)?;
     let (mut speed, mut cut, mut spin, mut roll) = (None, None, None, None);
     let mut with = Overrides::default();
@@ -240,7 +291,7 @@ fn read_collide(r: &mut Reader<'_>) -> Result<Collide, Problem> {
     })
 }
 
-fn read_stroke(r: &mut Reader<'_>) -> Result<Stroke, Problem> {
+pub(crate) fn read_stroke(r: &mut Reader<'_>) -> Result<Stroke, Problem> {
     open_body(r, "stroke", OBJECT)?;
     let mut stroke = Stroke::chunk(Vec::new());
     let (mut have_samples, mut more) = (false, None);
@@ -317,7 +368,7 @@ fn read_samples(r: &mut Reader<'_>, out: &mut Vec<i16, MAX_SAMPLES>) -> Result<(
 }
 
 /// The body of `version` and `shutdown`: `{}`.
-fn read_empty(r: &mut Reader<'_>, name: &'static str) -> Result<(), Problem> {
+pub(crate) fn read_empty(r: &mut Reader<'_>, name: &'static str) -> Result<(), Problem> {
     open_body(r, name, EMPTY)?;
     match next_key(r)? {
         None => Ok(()),
@@ -327,7 +378,7 @@ fn read_empty(r: &mut Reader<'_>, name: &'static str) -> Result<(), Problem> {
 
 /// The body of a `shot`.
 #[cfg(feature = "shot")]
-fn read_shot(r: &mut Reader<'_>) -> Result<Shot, Problem> {
+pub(crate) fn read_shot(r: &mut Reader<'_>) -> Result<Shot, Problem> {
     open_body(r, "shot", OBJECT)?;
     let mut shot = Shot {
         table: TableName::Pool,

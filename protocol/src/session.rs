@@ -2,9 +2,11 @@
 //! one line into one answer line. Pure (no I/O), so the firmware's serial loop stays a
 //! few lines and everything here is tested on the host.
 
+#[cfg(feature = "shot")]
+use cuesight::aim::AimError;
 use cuesight::collide;
 #[cfg(feature = "shot")]
-use cuesight::guidance::guide;
+use cuesight::guidance::{guide, Guidance};
 use cuesight::strike::{Cue, TipOffset};
 use cuesight_sensors::{estimate_raw, StrokeConfig, StrokeError, ACCEL_MPS2_PER_LSB};
 use heapless::Vec;
@@ -13,13 +15,14 @@ use crate::answer::{
     Answer, CollideAnswer, ParamsAnswer, ShutdownAnswer, StrokeAnswer, StrokeChunkAnswer,
     VersionAnswer,
 };
-use crate::decode::decode;
+use crate::decode::{self, Kind};
+use crate::json::Reader;
 use crate::line::Event;
 use crate::names::ModelName;
 use crate::problem::{ErrorKind, Name, Problem};
-use crate::request::{Collide, Defaults, Overrides, Request, Stroke};
+use crate::request::{Defaults, Stroke};
 #[cfg(feature = "shot")]
-use crate::shot::{write_shot, Shot};
+use crate::shot::{write_shot, PreparedShot};
 use crate::{MAX_ANSWER, MAX_LINE, MAX_SAMPLES, PROTOCOL_VERSION, STROKE_CAPACITY};
 
 /// An answer line: JSON and its `\n`.
@@ -108,33 +111,35 @@ impl Session {
         }
         self.requests = self.requests.saturating_add(1);
         let result = match event {
-            Event::Line(line) => decode(line).and_then(|request| self.answer(&request, out)),
+            Event::Line(line) => self.answer(line, out),
             Event::Overlong { length } => Err(Problem::LineTooLong {
                 length,
                 limit: MAX_LINE,
             }),
         };
-        let served = match result {
+        Some(match result {
             Ok((name, control)) => Served {
                 request: Some(name),
                 error: None,
                 control,
             },
-            Err(problem) => {
-                self.errors = self.errors.saturating_add(1);
-                // The line may have been a chunk of the stroke in progress: drop it
-                // rather than estimate from a window with a hole.
-                self.capture.clear();
-                let answer = Answer::Error(problem.to_answer());
-                answer.write(out);
-                Served {
-                    request: None,
-                    error: Some(problem.kind()),
-                    control: Control::Continue,
-                }
-            }
-        };
-        Some(served)
+            Err(problem) => self.refuse(&problem, out),
+        })
+    }
+
+    /// The error answer for `problem`.
+    #[inline(never)]
+    fn refuse(&mut self, problem: &Problem, out: &mut AnswerLine) -> Served {
+        self.errors = self.errors.saturating_add(1);
+        // The line may have been a chunk of the stroke in progress: drop it rather
+        // than estimate from a window with a hole.
+        self.capture.clear();
+        Answer::Error(problem.to_answer()).write(out);
+        Served {
+            request: None,
+            error: Some(problem.kind()),
+            control: Control::Continue,
+        }
     }
 
     /// Answers one line (without its newline): [`Session::serve`] for a line that fit.
@@ -145,70 +150,94 @@ impl Session {
         self.serve(Event::Line(line), out)
     }
 
-    /// Answers a decoded request into `out`.
+    /// Decodes and answers one line into `out`. Each request is answered by its own
+    /// function, which reads the request's body (so only that body is on the stack:
+    /// the firmware's peak stack is a budget) and writes the answer.
     fn answer(
         &mut self,
-        request: &Request,
+        line: &[u8],
         out: &mut AnswerLine,
     ) -> Result<(&'static str, Control), Problem> {
-        let name = request.name();
-        let answer = match request {
-            Request::Collide(collide) => Answer::Collide(self.collide(collide)?),
-            Request::Params(overrides) => Answer::Params(self.set_params(overrides)?),
-            Request::Stroke(stroke) => self.stroke(stroke)?,
+        let (kind, mut reader) = decode::open(line)?;
+        let r = &mut reader;
+        let mut control = Control::Continue;
+        match kind {
+            Kind::Collide => self.collide(r, out)?,
+            Kind::Params => self.set_params(r, out)?,
+            Kind::Stroke => self.stroke(r, out)?,
             #[cfg(feature = "shot")]
-            Request::Shot(shot) => {
-                self.shot(shot, out)?;
-                return Ok((name, Control::Continue));
+            Kind::Shot => self.shot(r, out)?,
+            Kind::Version => {
+                decode::read_empty(r, "version")?;
+                decode::close(r)?;
+                Answer::Version(self.version()).write(out);
             }
-            Request::Version => Answer::Version(self.version()),
-            Request::Shutdown => {
-                let answer = Answer::Shutdown(ShutdownAnswer {
+            Kind::Shutdown => {
+                decode::read_empty(r, "shutdown")?;
+                decode::close(r)?;
+                let answer = ShutdownAnswer {
                     requests: self.requests,
                     errors: self.errors,
-                });
-                answer.write(out);
-                return Ok((name, Control::Shutdown));
+                };
+                Answer::Shutdown(answer).write(out);
+                control = Control::Shutdown;
             }
-        };
-        answer.write(out);
-        Ok((name, Control::Continue))
+        }
+        Ok((kind.name(), control))
     }
 
-    fn collide(&self, request: &Collide) -> Result<CollideAnswer, Problem> {
+    #[inline(never)]
+    fn collide(&self, r: &mut Reader<'_>, out: &mut AnswerLine) -> Result<(), Problem> {
+        let request = decode::read_collide(r)?;
+        decode::close(r)?;
         let prepared = request.prepare(&self.defaults)?;
         let model = core_model(prepared.model)?;
         let outcome = collide(&prepared.params, &prepared.impact, model)?;
-        Ok(CollideAnswer::new(prepared.model, prepared.input, &outcome))
-    }
-
-    /// `shot`, answered into `out` here rather than through [`Answer`], which stays
-    /// small (the firmware's peak stack is the budget), and written by hand
-    /// ([`crate::shot::write_shot`]): serde-json-core's generic serializer for the
-    /// largest answer cost the firmware about 8 KB of flash.
-    #[cfg(feature = "shot")]
-    fn shot(&self, request: &Shot, out: &mut AnswerLine) -> Result<(), Problem> {
-        let prepared = request.prepare(&self.defaults)?;
-        let guidance = guide(
-            &prepared.scene,
-            request.speed,
-            prepared.tip,
-            prepared.aim,
-            &prepared.setup,
-        )?;
-        write_shot(out, request.tip, prepared.model, &guidance);
+        let answer = CollideAnswer::new(prepared.model, prepared.input, &outcome);
+        Answer::Collide(answer).write(out);
         Ok(())
     }
 
-    fn set_params(&mut self, overrides: &Overrides) -> Result<ParamsAnswer, Problem> {
+    /// `shot`, answered into `out` here rather than through [`Answer`], which stays
+    /// small, and written by hand ([`crate::shot::write_shot`]). The request is read
+    /// and validated, the guidance computed and the answer written each in a frame of
+    /// its own: the shot's solve is the firmware's deepest stack (issue 6's 8 KiB).
+    #[cfg(feature = "shot")]
+    #[inline(never)]
+    fn shot(&self, r: &mut Reader<'_>, out: &mut AnswerLine) -> Result<(), Problem> {
+        let (prepared, speed, tip) = self.prepare_shot(r)?;
+        let guidance = run_guide(&prepared, speed)?;
+        write_shot(out, tip, prepared.model, &guidance);
+        Ok(())
+    }
+
+    /// The `shot` request, validated; in its own frame, which is gone before the
+    /// guidance runs.
+    #[cfg(feature = "shot")]
+    #[inline(never)]
+    fn prepare_shot(&self, r: &mut Reader<'_>) -> Result<(PreparedShot, f32, [f32; 2]), Problem> {
+        let request = decode::read_shot(r)?;
+        decode::close(r)?;
+        let prepared = request.prepare(&self.defaults)?;
+        Ok((prepared, request.speed, request.tip))
+    }
+
+    #[inline(never)]
+    fn set_params(&mut self, r: &mut Reader<'_>, out: &mut AnswerLine) -> Result<(), Problem> {
+        let overrides = decode::read_params(r)?;
+        decode::close(r)?;
         let defaults = overrides.apply(&self.defaults)?;
         core_model(defaults.model)?;
         self.defaults = defaults;
-        Ok(ParamsAnswer::from(&self.defaults))
+        Answer::Params(ParamsAnswer::from(&self.defaults)).write(out);
+        Ok(())
     }
 
     /// Adds a chunk to the capture; on the last chunk, estimates and clears it.
-    fn stroke(&mut self, stroke: &Stroke) -> Result<Answer, Problem> {
+    #[inline(never)]
+    fn stroke(&mut self, r: &mut Reader<'_>, out: &mut AnswerLine) -> Result<(), Problem> {
+        let stroke = decode::read_stroke(r)?;
+        decode::close(r)?;
         if self.capture.extend_from_slice(&stroke.samples).is_err() {
             self.capture.clear();
             return Err(Problem::TooMany {
@@ -217,14 +246,17 @@ impl Session {
             });
         }
         if stroke.more {
-            return Ok(Answer::StrokeChunk(StrokeChunkAnswer {
+            let answer = StrokeChunkAnswer {
                 samples: self.capture.len() as u32,
                 capacity: STROKE_CAPACITY as u32,
-            }));
+            };
+            Answer::StrokeChunk(answer).write(out);
+            return Ok(());
         }
-        let result = self.estimate(stroke);
+        let result = self.estimate(&stroke);
         self.capture.clear();
-        result.map(Answer::Stroke)
+        Answer::Stroke(result?).write(out);
+        Ok(())
     }
 
     fn estimate(&self, stroke: &Stroke) -> Result<StrokeAnswer, Problem> {
@@ -270,6 +302,19 @@ impl Session {
             stroke_capacity: STROKE_CAPACITY as u32,
         }
     }
+}
+
+/// [`guide`] on a prepared shot, in its own frame.
+#[cfg(feature = "shot")]
+#[inline(never)]
+fn run_guide(prepared: &PreparedShot, speed: f32) -> Result<Guidance, AimError> {
+    guide(
+        &prepared.scene,
+        speed,
+        prepared.tip,
+        prepared.aim,
+        &prepared.setup,
+    )
 }
 
 /// The core model for `name`; `reference` is host-only.

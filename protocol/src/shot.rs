@@ -229,6 +229,7 @@ impl ShotAnswer {
 /// `\n`, byte for byte what serde-json-core wrote for a [`ShotAnswer`] (its
 /// `Serialize` is kept for hosts, and as the tests' oracle), by hand (`encode.rs`);
 /// if it does not fit, the `internal` error line.
+#[inline(never)]
 pub(crate) fn write_shot(out: &mut AnswerLine, tip: [f32; 2], model: ModelName, g: &Guidance) {
     let mut w = Writer::new(out);
     w.tag("shot");
