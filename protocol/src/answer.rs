@@ -2,9 +2,10 @@
 //! (`{"collide":{...}}`, `{"error":{...}}`).
 //!
 //! [`CollideAnswer`] is also what `cuesight collide --json` prints (untagged): the CLI
-//! and the firmware produce the same struct, serialized by serde_json on the host and by
-//! serde-json-core on the device. Both print `f32` with `ryu`'s shortest round-trip
-//! form, so the same numbers give the same text. All quantities are SI (m, s, kg,
+//! and the firmware produce the same struct, serialized by serde_json on the host and
+//! written by hand on the device ([`Answer::write`], byte for byte what serde-json-core
+//! wrote). Both print `f32` with `ryu`'s shortest round-trip form, so the same numbers
+//! give the same text. All quantities are SI (m, s, kg,
 //! rad/s, N·s) in the collision frame of physics-notes §1 (`x` from the cue ball to the
 //! object ball, `z` up, `y = z × x`); angles are in degrees.
 

@@ -1,5 +1,7 @@
 //! The cuesight firmware's serial protocol: newline-delimited JSON requests and answers,
-//! `no_std` and heap-free (serde + serde-json-core, fixed buffers from heapless).
+//! `no_std` and heap-free (fixed buffers from heapless). The device reads and writes the
+//! JSON by hand (`decode.rs`, `encode.rs`: the same text serde-json-core read and wrote,
+//! without its generic code); hosts use the serde impls here with serde_json.
 //!
 //! One request per line, one answer line per request, in order:
 //!

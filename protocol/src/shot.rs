@@ -219,7 +219,7 @@ pub struct ShotAnswer {
 }
 
 impl ShotAnswer {
-    /// The answer line, `{"shot":{...}}` and its `\n`, into `out` (see [`write_shot`]).
+    /// The answer line, `{"shot":{...}}` and its `\n`, into `out`, as the session writes it.
     pub fn write(&self, out: &mut AnswerLine) {
         write_shot(out, self.tip, self.model, &self.guidance);
     }
