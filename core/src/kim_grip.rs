@@ -41,6 +41,7 @@ use crate::params::Params;
 use crate::real::Real;
 
 mod fast_path;
+pub(crate) use fast_path::MIN_SLIP_SQUARED as FAST_PATH_MIN_SLIP_SQUARED;
 
 /// `ν = 2/5`, exact in `R`.
 fn nu<R: Real>() -> R {
@@ -57,14 +58,12 @@ fn k_y<R: Real>() -> R {
 // code (divisions included) above the dispatch, where every model pays for it.
 #[inline(never)]
 pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
-    // μ > 0 if the fast path's friction applies (constant μ > 0, μ_ct = 0), else 0.
-    let fast_mu = params.derived().kim_grip_mu;
-    if fast_mu > 0.0 {
-        if let Some(outcome) = fast_path::collide::<R>(params, impact, R::of(fast_mu)) {
-            return Ok(outcome);
-        }
+    // The fast path declines (`None`) every scene it does not cover, those whose
+    // `Params` it does not apply to included (their minimum slip is +∞).
+    match fast_path::collide::<R>(params, impact) {
+        Some(outcome) => Ok(outcome),
+        None => general::<R>(params, impact),
     }
-    general::<R>(params, impact)
 }
 
 /// Every scene: any friction law, the cue ball's table friction, slips down to zero
@@ -158,7 +157,7 @@ fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
     } else {
         -mu_ct * cue_dir_x * R::abs(first_dir_z) * first_budget / first_span
     };
-    let normal = final_normal_impulse(
+    let (normal, slides) = final_normal_impulse(
         approach,
         restitution,
         R::ONE + restitution,
@@ -166,7 +165,7 @@ fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
         grip_normal,
     );
 
-    let (j_y, j_z, regime) = if normal < grip_normal {
+    let (j_y, j_z, regime) = if slides {
         let budget = budget_after(normal);
         let (dir_y, dir_z) = slip.friction_direction(budget);
         (budget * dir_y, budget * dir_z, Regime::Sliding)
@@ -315,15 +314,19 @@ impl<R: Real> TangentialSlip<R> {
 /// `v_x(p) = −a + (2 − ρ) p` for `p ≤ p*`, slope 2 after; compression ends at
 /// `v_x = 0`; restitution ends when the work done since then is `e² |W_c|`.
 ///
-/// `one_plus_e` is `1 + e` (the caller may have it precomputed).
+/// `one_plus_e` is `1 + e` (the caller may have it precomputed). Returns the impulse
+/// and whether the contact slides to the end (`p ≤ p*`, regime `Sliding`; otherwise
+/// `p > p*` and it grips): the branch taken here decides it, so the callers need no
+/// second comparison. At `p = p*` exactly both regimes give the same friction (the
+/// direction meets the stick impulse there).
 #[inline(always)]
-fn final_normal_impulse<R: Real>(a: R, e: R, one_plus_e: R, rho: R, grip: R) -> R {
+fn final_normal_impulse<R: Real>(a: R, e: R, one_plus_e: R, rho: R, grip: R) -> (R, bool) {
     let (half, two) = (R::of(0.5), R::of(2.0));
     let slope = two - rho;
     let compression_end = a / slope;
     let sliding_end = one_plus_e * compression_end;
     if sliding_end <= grip {
-        return sliding_end;
+        return (sliding_end, true);
     }
     if grip >= compression_end {
         // Grip during restitution: work `slope (p*−p_c)²/2` done on the sliding piece,
@@ -339,7 +342,7 @@ fn final_normal_impulse<R: Real>(a: R, e: R, one_plus_e: R, rho: R, grip: R) -> 
         } else {
             R::ZERO
         };
-        grip + extra
+        (grip + extra, false)
     } else {
         // Grip during compression: slope 2 from p*, compression ends at p_c, then
         // (p − p_c)² = e² |W_c|.
@@ -348,7 +351,7 @@ fn final_normal_impulse<R: Real>(a: R, e: R, one_plus_e: R, rho: R, grip: R) -> 
         let compression_end = grip - half * v_star;
         let compression_work = work_at_grip - R::of(0.25) * v_star * v_star;
         let depth = R::max(-compression_work, R::ZERO);
-        compression_end + e * R::sqrt(depth)
+        (compression_end + e * R::sqrt(depth), false)
     }
 }
 
@@ -359,7 +362,7 @@ mod tests {
     #[test]
     fn normal_impulse_without_table_is_one_plus_e_half() {
         assert!(
-            (final_normal_impulse(2.0f32, 0.9, 1.0 + 0.9, 0.0, f32::INFINITY) - 1.9).abs() < 1e-6
+            (final_normal_impulse(2.0f32, 0.9, 1.0 + 0.9, 0.0, f32::INFINITY).0 - 1.9).abs() < 1e-6
         );
     }
 
@@ -368,8 +371,8 @@ mod tests {
         let (a, e, rho) = (1.0f32, 0.9f32, 0.04f32);
         let p_c = a / (2.0 - rho);
         for grip in [p_c, (1.0 + e) * p_c] {
-            let below = final_normal_impulse(a, e, 1.0 + e, rho, grip * (1.0 - 1e-6));
-            let above = final_normal_impulse(a, e, 1.0 + e, rho, grip * (1.0 + 1e-6));
+            let (below, _) = final_normal_impulse(a, e, 1.0 + e, rho, grip * (1.0 - 1e-6));
+            let (above, _) = final_normal_impulse(a, e, 1.0 + e, rho, grip * (1.0 + 1e-6));
             assert!((below - above).abs() < 1e-5, "{below} vs {above} at {grip}");
         }
     }
@@ -377,7 +380,8 @@ mod tests {
     #[test]
     fn early_grip_tends_to_the_frictionless_impulse() {
         // Table friction that stops immediately leaves the frictionless (1+e) a / 2.
-        let p = final_normal_impulse(1.0f32, 0.95, 1.0 + 0.95, 0.04, 0.0);
+        let (p, slides) = final_normal_impulse(1.0f32, 0.95, 1.0 + 0.95, 0.04, 0.0);
+        assert!(!slides);
         assert!((p - 0.975).abs() < 1e-6);
     }
 
@@ -402,7 +406,7 @@ mod tests {
     #[test]
     fn fast_path_agrees_with_the_general_path() {
         fn largest_difference<R: Real>(params: &Params, impact: &Impact) -> Option<(f32, bool)> {
-            let fast = fast_path::collide::<R>(params, impact, R::of(params.mu()))?;
+            let fast = fast_path::collide::<R>(params, impact)?;
             let general = general::<R>(params, impact).ok()?;
             let scale = impact.speed().max(params.radius() * impact.spin().length());
             let mut worst = 0.0f32;

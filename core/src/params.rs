@@ -29,6 +29,10 @@ pub struct Params {
 pub(crate) struct Derived {
     /// μ when `KimGrip`'s fast path applies (constant μ > 0, μ_ct = 0), else 0.
     pub kim_grip_mu: f32,
+    /// Smallest `|v₀|²` ((m/s)²) the fast path takes: its `MIN_SLIP_SQUARED` when it
+    /// applies, +∞ when not, so that one comparison of the slip sends every other
+    /// scene to the general path.
+    pub kim_grip_min_slip_squared: f32,
     /// `1 + e*`.
     pub one_plus_restitution: f32,
     /// `k_z = (2 + ν − μ_s)/ν = 6 − 2.5 μ_s` when the object ball is pressed into the
@@ -55,6 +59,11 @@ impl Derived {
         let pressed_k_z = 6.0 - 2.5 * mu_s;
         Self {
             kim_grip_mu,
+            kim_grip_min_slip_squared: if kim_grip_mu > 0.0 {
+                crate::kim_grip::FAST_PATH_MIN_SLIP_SQUARED
+            } else {
+                f32::INFINITY
+            },
             one_plus_restitution: 1.0 + restitution,
             pressed_k_z,
             pressed_boundary: 1.0 / (7.0 + pressed_k_z),

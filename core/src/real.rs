@@ -39,6 +39,11 @@ pub trait Real:
     fn to_f32(self) -> f32;
     /// Square root.
     fn sqrt(x: Self) -> Self;
+    /// Square roots of two numbers, `(sqrt(a), sqrt(b))` (one instruction sequence
+    /// for both where that is cheaper: `math::sqrt_pair`).
+    fn sqrt_pair(a: Self, b: Self) -> (Self, Self) {
+        (Self::sqrt(a), Self::sqrt(b))
+    }
     /// Absolute value.
     fn abs(x: Self) -> Self;
     /// `e^x`.
@@ -100,6 +105,10 @@ impl Real for f32 {
     #[inline(always)]
     fn sqrt(x: Self) -> Self {
         crate::math::sqrt(x)
+    }
+    #[inline(always)]
+    fn sqrt_pair(a: Self, b: Self) -> (Self, Self) {
+        crate::math::sqrt_pair(a, b)
     }
     #[inline(always)]
     fn abs(x: Self) -> Self {
