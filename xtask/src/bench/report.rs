@@ -320,15 +320,17 @@ fn targets(report: &Value) -> String {
         if let (Some(mean), Some(max)) = (i3["mean"].as_f64(), i3["max"].as_f64()) {
             md.push_str(&format!(
                 "- `KimGrip` f32 ≤ {KIM_GRIP_TARGET} instructions per collision: {} \
-                 instructions on average, {} at most (opt-level 3; {} at opt-level s) — {}. \
-                 For scale, `Ideal` (no friction at all, only the outcome bookkeeping and the \
+                 instructions on average — {} on average; {} at most — {} for every \
+                 collision (opt-level 3; {} on average at opt-level s). For scale, \
+                 `Ideal` (no friction at all, only the outcome bookkeeping and the \
                  finiteness guard) takes {}. Where the instructions go, and what a bare \
                  `vsqrt.f32` (nightly, feature `unstable-intrinsics`) would give: \
                  [`physics.md` §4, Cost](physics.md#4-kimgrip).\n",
                 instructions(mean),
+                verdict(mean <= KIM_GRIP_TARGET),
                 instructions(max),
-                opt(&is["mean"], instructions),
                 verdict(max <= KIM_GRIP_TARGET),
+                opt(&is["mean"], instructions),
                 find(report, "ideal", "f32", "libm").map_or("—".into(), |r| opt(
                     &r["instructions"]["release"]["mean"],
                     instructions
