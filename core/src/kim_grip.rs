@@ -359,6 +359,34 @@ fn final_normal_impulse<R: Real>(a: R, e: R, one_plus_e: R, rho: R, grip: R) -> 
 mod tests {
     use super::*;
 
+    /// A friction law built from the enum's variant bypasses `FrictionLaw::constant`'s
+    /// range check; the fast path's guard assumes μ ≤ 1, so such laws take the general
+    /// path, whose guard reports the error (found by the `collide` fuzz target: μ = ∞
+    /// gave a NaN velocity through the fast path).
+    #[test]
+    fn unvalidated_friction_never_gives_a_non_finite_outcome() {
+        let impacts = [
+            // Topspin (object ball pressed), stun with side spin, draw.
+            Impact::from_velocity([2.0, -10.0], [340.9, 68.6, 0.0]),
+            Impact::from_velocity([2.0, 0.3], [0.0, -20.0, 10.0]),
+            Impact::from_velocity([3.0, 0.0], [0.0, -90.0, 0.0]),
+        ];
+        for mu in [f32::INFINITY, 1e30, 1.5, f32::NAN, -0.5, f32::MIN_POSITIVE] {
+            let params = Params::POOL.with_friction_law(FrictionLaw::Constant(mu));
+            for impact in &impacts {
+                let impact = impact.as_ref().expect("valid impact");
+                for result in [
+                    collide::<f32>(&params, impact),
+                    collide::<f64>(&params, impact),
+                ] {
+                    if let Ok(outcome) = result {
+                        assert!(outcome.is_finite(), "mu = {mu}: {outcome:?}");
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn normal_impulse_without_table_is_one_plus_e_half() {
         assert!(

@@ -27,7 +27,7 @@ pub struct Params {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct Derived {
-    /// μ when `KimGrip`'s fast path applies (constant μ > 0, μ_ct = 0), else 0.
+    /// μ when `KimGrip`'s fast path applies (constant μ in (0, 1], μ_ct = 0), else 0.
     pub kim_grip_mu: f32,
     /// Smallest `|v₀|²` ((m/s)²) the fast path takes: its `MIN_SLIP_SQUARED` when it
     /// applies, +∞ when not, so that one comparison of the slip sends every other
@@ -52,8 +52,11 @@ impl Derived {
         mu_ct: f32,
         radius: f32,
     ) -> Self {
+        // μ ≤ 1 too: a law built from the enum's variant skips `FrictionLaw::constant`'s
+        // check, and the fast path's guard relies on the validated range (the general
+        // path guards every impulse).
         let kim_grip_mu = match friction {
-            FrictionLaw::Constant(mu) if mu > 0.0 && mu_ct == 0.0 => mu,
+            FrictionLaw::Constant(mu) if mu > 0.0 && mu <= 1.0 && mu_ct == 0.0 => mu,
             _ => 0.0,
         };
         let pressed_k_z = 6.0 - 2.5 * mu_s;

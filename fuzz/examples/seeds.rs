@@ -470,8 +470,26 @@ fn collide_seeds(dir: &Path) -> usize {
         println!("collide/{name}: {report:?}");
         seeds.push((name.clone(), bytes));
     }
+    // Inputs the fuzzer once failed on, kept byte for byte: μ = ∞ through the enum's
+    // `Constant` variant (unvalidated) gave `KimGrip`'s fast path a NaN velocity.
+    for (name, bytes) in COLLIDE_REGRESSIONS {
+        let report = collide::run(bytes);
+        assert!(report.valid, "{name}: {report:?}");
+        println!("collide/{name}: {report:?}");
+        seeds.push((name.to_string(), bytes.to_vec()));
+    }
     write_all(dir, &seeds)
 }
+
+/// Crash inputs of the `collide` target, as `cargo fuzz` wrote them.
+const COLLIDE_REGRESSIONS: [(&str, &[u8]); 1] = [(
+    "unvalidated-infinite-mu-fast-path",
+    &[
+        0x00, 0x06, 0x39, 0x99, 0x99, 0x99, 0x06, 0xbf, 0xfe, 0xff, 0xbf, 0x06, 0x4f, 0x00, 0x00,
+        0x6d, 0x06, 0x51, 0x99, 0x77, 0x77, 0x77, 0x77, 0x77, 0x77, 0x77, 0x02, 0x77, 0x83, 0x41,
+        0x83, 0x54, 0xc0, 0x7f, 0xff, 0xff, 0x99, 0x59, 0xc4, 0x99, 0x9e, 0x06,
+    ],
+)];
 
 /// The README's shot: 2 m/s, cut 30°, 40 rad/s of topspin, μ = 0.06, pool balls.
 fn readme_collision() -> Collision {
