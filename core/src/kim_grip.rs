@@ -375,13 +375,12 @@ mod tests {
             let params = Params::POOL.with_friction_law(FrictionLaw::Constant(mu));
             for impact in &impacts {
                 let impact = impact.as_ref().expect("valid impact");
-                for result in [
+                let results = [
                     collide::<f32>(&params, impact),
                     collide::<f64>(&params, impact),
-                ] {
-                    if let Ok(outcome) = result {
-                        assert!(outcome.is_finite(), "mu = {mu}: {outcome:?}");
-                    }
+                ];
+                for outcome in results.iter().flatten() {
+                    assert!(outcome.is_finite(), "mu = {mu}: {outcome:?}");
                 }
             }
         }
