@@ -138,7 +138,7 @@ pub struct Shot {
 pub fn play(scene: &Scene, stroke: &Stroke, setup: &ShotSetup) -> Result<Shot> {
     check_model(setup.model)?;
     let model = setup.model;
-    play_with(scene, stroke, setup, |params, impact| {
+    play_chain(scene, stroke, setup, &mut |params, impact| {
         collide(params, impact, model)
     })
 }
@@ -152,6 +152,9 @@ pub(crate) fn check_model(model: Model) -> Result<()> {
     Ok(())
 }
 
+/// A collision predictor for the shot chain: the outcome of `impact` with `params`.
+pub(crate) type Collision<'a> = dyn FnMut(&Params, &Impact) -> Result<Outcome> + 'a;
+
 /// Play `stroke` on `scene`, predicting the collision with `collision` (e.g. a host-side
 /// reference solver); `setup.model` is not used.
 pub fn play_with<F>(
@@ -163,6 +166,19 @@ pub fn play_with<F>(
 where
     F: FnMut(&Params, &Impact) -> Result<Outcome>,
 {
+    play_chain(scene, stroke, setup, &mut collision)
+}
+
+/// The shot chain of [`play`] and [`play_with`], with the collision behind a `dyn`
+/// reference so that the image holds one copy of it whatever the predictor: `play` and
+/// the aim solver's forward evaluations ([`crate::aim`]) share it (each generic copy
+/// was about 2.5 KB on the Cortex-M4).
+pub(crate) fn play_chain(
+    scene: &Scene,
+    stroke: &Stroke,
+    setup: &ShotSetup,
+    collision: &mut Collision<'_>,
+) -> Result<Shot> {
     let params = &setup.params;
     let radius = scene.radius();
     if math::abs(params.radius() - radius) > 1e-6 * radius {
@@ -204,7 +220,7 @@ where
         else {
             break None;
         };
-        match collide_at(scene, setup, &cue_before, aim, index, time, &mut collision)? {
+        match collide_at(scene, setup, &cue_before, aim, index, time, collision)? {
             Some(contact) => break Some(contact),
             None => passed |= 1 << index,
         }
@@ -216,18 +232,15 @@ where
     })
 }
 
-fn collide_at<F>(
+fn collide_at(
     scene: &Scene,
     setup: &ShotSetup,
     cue_before: &Motion,
     aim: Vec3,
     index: usize,
     time: f32,
-    collision: &mut F,
-) -> Result<Option<Contact>>
-where
-    F: FnMut(&Params, &Impact) -> Result<Outcome>,
-{
+    collision: &mut Collision<'_>,
+) -> Result<Option<Contact>> {
     let radius = scene.radius();
     let cue_position = cue_before.position_at(time);
     let object_position = scene.balls().get(index).copied().ok_or(Error::OutOfRange {
