@@ -19,6 +19,7 @@
 // KIND, either express or implied.
 
 use crate::d2s;
+use crate::f2s_table::{FLOAT_POW5_INV_SPLIT, FLOAT_POW5_SPLIT};
 
 pub const FLOAT_POW5_INV_BITCOUNT: i32 = d2s::DOUBLE_POW5_INV_BITCOUNT - 64;
 pub const FLOAT_POW5_BITCOUNT: i32 = d2s::DOUBLE_POW5_BITCOUNT - 64;
@@ -73,41 +74,19 @@ fn mul_shift_32(m: u32, factor: u64, shift: i32) -> u32 {
 
 #[cfg_attr(feature = "no-panic", inline)]
 pub fn mul_pow5_inv_div_pow2(m: u32, q: u32, j: i32) -> u32 {
-    #[cfg(feature = "small")]
-    {
-        // The inverse multipliers are defined as [2^x / 5^y] + 1; the upper 64
-        // bits from the double lookup table are the correct bits for [2^x /
-        // 5^y], so we have to add 1 here. Note that we rely on the fact that
-        // the added 1 that's already stored in the table never overflows into
-        // the upper 64 bits.
-        let pow5 = unsafe { d2s::compute_inv_pow5(q) };
-        mul_shift_32(m, pow5.1 + 1, j)
-    }
-
-    #[cfg(not(feature = "small"))]
-    {
-        debug_assert!(q < d2s::DOUBLE_POW5_INV_SPLIT.len() as u32);
-        unsafe {
-            mul_shift_32(
-                m,
-                d2s::DOUBLE_POW5_INV_SPLIT.get_unchecked(q as usize).1 + 1,
-                j,
-            )
-        }
-    }
+    // cuesight patch: the `f32` table (`f2s_table`) whatever the features.
+    // The inverse multipliers are defined as [2^x / 5^y] + 1; the upper 64
+    // bits from the double lookup table are the correct bits for [2^x /
+    // 5^y], so we have to add 1 here. Note that we rely on the fact that
+    // the added 1 that's already stored in the table never overflows into
+    // the upper 64 bits.
+    debug_assert!(q < FLOAT_POW5_INV_SPLIT.len() as u32);
+    unsafe { mul_shift_32(m, *FLOAT_POW5_INV_SPLIT.get_unchecked(q as usize) + 1, j) }
 }
 
 #[cfg_attr(feature = "no-panic", inline)]
 pub fn mul_pow5_div_pow2(m: u32, i: u32, j: i32) -> u32 {
-    #[cfg(feature = "small")]
-    {
-        let pow5 = unsafe { d2s::compute_pow5(i) };
-        mul_shift_32(m, pow5.1, j)
-    }
-
-    #[cfg(not(feature = "small"))]
-    {
-        debug_assert!(i < d2s::DOUBLE_POW5_SPLIT.len() as u32);
-        unsafe { mul_shift_32(m, d2s::DOUBLE_POW5_SPLIT.get_unchecked(i as usize).1, j) }
-    }
+    // cuesight patch: the `f32` table (`f2s_table`) whatever the features.
+    debug_assert!(i < FLOAT_POW5_SPLIT.len() as u32);
+    unsafe { mul_shift_32(m, *FLOAT_POW5_SPLIT.get_unchecked(i as usize), j) }
 }

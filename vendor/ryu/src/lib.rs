@@ -114,7 +114,8 @@
 mod buffer;
 mod common;
 mod d2s;
-#[cfg(not(feature = "small"))]
+// cuesight patch: the full tables are compiled whatever the features, for
+// `f2s_table`, which reads its entries from them at compile time.
 mod d2s_full_table;
 mod d2s_intrinsics;
 #[cfg(feature = "small")]
@@ -122,6 +123,7 @@ mod d2s_small_table;
 mod digit_table;
 mod f2s;
 mod f2s_intrinsics;
+mod f2s_table;
 mod pretty;
 #[cfg(test)]
 mod tests;
