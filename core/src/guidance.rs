@@ -16,7 +16,7 @@ use crate::estimate::select;
 use crate::math;
 use crate::model::Model;
 use crate::outcome::Regime;
-use crate::shot::{play, Contact, ShotSetup, Stroke};
+use crate::shot::{play_without_pocket, Contact, ShotSetup, Stroke};
 use crate::strike::TipOffset;
 use crate::table::{Scene, Table};
 use crate::travel::{Motion, GRAVITY};
@@ -337,7 +337,7 @@ pub fn guide(
     if let Some(t) = target {
         check_target(scene, t)?;
     }
-    let shot = play(scene, &stroke, setup)?;
+    let shot = play_without_pocket(scene, &stroke, setup)?;
     let table = scene.table();
     let radius = scene.radius();
     let launch = &shot.cue_before;

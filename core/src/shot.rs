@@ -136,6 +136,18 @@ pub struct Shot {
 /// `Auto` tolerance is out of range ([`Field::Tolerance`], whether or not a ball is
 /// hit).
 pub fn play(scene: &Scene, stroke: &Stroke, setup: &ShotSetup) -> Result<Shot> {
+    let mut shot = play_without_pocket(scene, stroke, setup)?;
+    find_pocket(&mut shot, scene);
+    Ok(shot)
+}
+
+/// [`play`] but for [`Contact::pocket`], left at `None`: for the guidance, which follows
+/// both balls' paths to their ends itself ([`crate::guidance`]).
+pub(crate) fn play_without_pocket(
+    scene: &Scene,
+    stroke: &Stroke,
+    setup: &ShotSetup,
+) -> Result<Shot> {
     check_model(setup.model)?;
     let model = setup.model;
     play_chain(scene, stroke, setup, &mut |params, impact| {
@@ -166,13 +178,18 @@ pub fn play_with<F>(
 where
     F: FnMut(&Params, &Impact) -> Result<Outcome>,
 {
-    play_chain(scene, stroke, setup, &mut collision)
+    let mut shot = play_chain(scene, stroke, setup, &mut collision)?;
+    find_pocket(&mut shot, scene);
+    Ok(shot)
 }
 
-/// The shot chain of [`play`] and [`play_with`], with the collision behind a `dyn`
-/// reference so that the image holds one copy of it whatever the predictor: `play` and
-/// the aim solver's forward evaluations ([`crate::aim`]) share it (each generic copy
-/// was about 2.5 KB on the Cortex-M4).
+/// The shot chain of [`play`] and [`play_with`] but for [`Contact::pocket`], which it
+/// leaves at `None` ([`find_pocket`] adds it), with the collision behind a `dyn`
+/// reference: the image holds one copy of the chain whatever the predictor, which
+/// `play`, the guidance and the aim solver's forward evaluations ([`crate::aim`]) share
+/// (each generic copy was about 2.5 KB on the Cortex-M4), and none of the pocket search
+/// when only the guidance and the aim solver are linked (they follow the object ball
+/// themselves).
 pub(crate) fn play_chain(
     scene: &Scene,
     stroke: &Stroke,
@@ -277,6 +294,27 @@ fn collide_at(
         radius,
         &setup.cloth,
     )?;
+    Ok(Some(Contact {
+        object_ball: index,
+        time,
+        cue_position,
+        line_of_centres: centres,
+        cut_angle: math::atan2(v_y, v_x),
+        impact,
+        outcome,
+        cue_after,
+        object_after,
+        pocket: None,
+    }))
+}
+
+/// Sets [`Contact::pocket`] of `shot`'s contact, if any: the first pocket of `scene`'s
+/// table whose target segment the object ball's centre crosses.
+fn find_pocket(shot: &mut Shot, scene: &Scene) {
+    let Some(contact) = shot.contact.as_mut() else {
+        return;
+    };
+    let object_after = &contact.object_after;
     let mut pocket: Option<(usize, f32)> = None;
     let reach = object_after.bounds();
     for (i, p) in scene.table().pockets().iter().enumerate() {
@@ -291,18 +329,7 @@ fn collide_at(
             }
         }
     }
-    Ok(Some(Contact {
-        object_ball: index,
-        time,
-        cue_position,
-        line_of_centres: centres,
-        cut_angle: math::atan2(v_y, v_x),
-        impact,
-        outcome,
-        cue_after,
-        object_after,
-        pocket,
-    }))
+    contact.pocket = pocket;
 }
 
 #[cfg(test)]
