@@ -153,6 +153,8 @@ fn cushion_time(motion: &Motion, table: &Table, radius: f32) -> Option<f32> {
 }
 
 /// Direction of the horizontal part of `v` (degrees; 0 for a zero vector).
+// Not inlined into its three uses (120 B of the firmware's flash).
+#[inline(never)]
 fn direction_deg(v: Vec3) -> f32 {
     if v.x == 0.0 && v.y == 0.0 {
         0.0
@@ -391,6 +393,9 @@ fn check_target(scene: &Scene, target: Target) -> Result<(), Error> {
     Ok(())
 }
 
+// Not inlined into `guide`: in a frame of its own the firmware's image is
+// smaller (as for `shot::collide_at`).
+#[inline(never)]
 fn contact_guide(contact: &Contact, cue_before: &Motion, setup: &ShotSetup) -> ContactGuide {
     let (model_used, error_estimate) = match setup.model {
         Model::Auto { tolerance } => {
