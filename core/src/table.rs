@@ -105,7 +105,13 @@ impl Table {
         let side_mouth = check(Field::Table, side_mouth, 0.0, 0.5 * length, false)?;
         // The pockets' target segments are moved in by the radius.
         let radius = check(Field::Radius, radius, 0.001, 1.0, false)?;
-        Ok(Self::layout(length, width, corner_mouth, side_mouth, radius))
+        Ok(Self::layout(
+            length,
+            width,
+            corner_mouth,
+            side_mouth,
+            radius,
+        ))
     }
 
     /// The table of [`Table::new`] for arguments that pass its checks: a `const fn`, so
@@ -384,13 +390,21 @@ mod tests {
     fn presets_are_the_tables_new_lays_out() {
         use core::hint::black_box;
         let presets = [
-            (Table::pool(), [2.54, 1.27, 0.116, 0.13, BallSet::POOL.radius], 6),
+            (
+                Table::pool(),
+                [2.54, 1.27, 0.116, 0.13, BallSet::POOL.radius],
+                6,
+            ),
             (
                 Table::snooker(),
                 [3.569, 1.778, 0.086, 0.095, BallSet::SNOOKER.radius],
                 6,
             ),
-            (Table::carom(), [2.84, 1.42, 0.0, 0.0, BallSet::CAROM.radius], 0),
+            (
+                Table::carom(),
+                [2.84, 1.42, 0.0, 0.0, BallSet::CAROM.radius],
+                0,
+            ),
         ];
         let bits = |t: &Table| {
             let mut bits = std::vec![t.length().to_bits(), t.width().to_bits()];
