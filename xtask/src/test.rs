@@ -76,7 +76,7 @@ const STEPS: &[Step] = &[
         action: panic_never,
     },
     Step {
-        title: "firmware: nrf52840 board: clippy and release build (not run: no hardware here)",
+        title: "firmware: nrf52840 board: clippy, release build, flash within 64 KiB and static RAM within 16 KiB (not run: no hardware here)",
         action: nrf52840,
     },
     Step {
@@ -117,7 +117,8 @@ fn panic_never() -> Result {
 }
 
 /// The `nrf52840` board, linted and built in release in its own target directory (flash
-/// it with `probe-rs run --chip nRF52840_xxAA <elf>`, see the README).
+/// it with `probe-rs run --chip nRF52840_xxAA <elf>`, see the README), its flash and
+/// static RAM held to the budgets.
 fn nrf52840() -> Result {
     let board = [
         "--release",
@@ -134,7 +135,7 @@ fn nrf52840() -> Result {
     let mut build = vec!["build"];
     build.extend(board);
     cargo_in_firmware(&build)?;
-    size::report(
+    size::check_budgets(
         &cmd::firmware_dir()
             .join("target/nrf52840")
             .join(tools::TARGET)
