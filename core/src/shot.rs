@@ -249,9 +249,6 @@ pub(crate) fn play_chain(
     })
 }
 
-// Not inlined into `play_chain`: in a frame of its own the firmware's image is
-// smaller (Thumb-2 code density: fewer registers to save, shorter stack offsets).
-#[inline(never)]
 fn collide_at(
     scene: &Scene,
     setup: &ShotSetup,
