@@ -339,7 +339,9 @@ pub fn guide(
     if let Some(t) = target {
         check_target(scene, t)?;
     }
-    let shot = play_without_pocket(scene, &stroke, setup)?;
+    // Borrowed where it lies: moving the `Shot` out of its `Result` is a copy.
+    let played = play_without_pocket(scene, &stroke, setup);
+    let shot = played.as_ref().map_err(|e| *e)?;
     let table = scene.table();
     let radius = scene.radius();
     let launch = &shot.cue_before;

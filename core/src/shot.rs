@@ -136,9 +136,13 @@ pub struct Shot {
 /// `Auto` tolerance is out of range ([`Field::Tolerance`], whether or not a ball is
 /// hit).
 pub fn play(scene: &Scene, stroke: &Stroke, setup: &ShotSetup) -> Result<Shot> {
-    let mut shot = play_without_pocket(scene, stroke, setup)?;
-    find_pocket(&mut shot, scene);
-    Ok(shot)
+    // Completed where it lies: moving a `Shot` (several hundred bytes) out of its
+    // `Result` and into a new one is two copies on the device (`memcpy`).
+    let mut played = play_without_pocket(scene, stroke, setup);
+    if let Ok(shot) = &mut played {
+        find_pocket(shot, scene);
+    }
+    played
 }
 
 /// [`play`] but for [`Contact::pocket`], left at `None`: for the guidance, which follows
@@ -178,9 +182,11 @@ pub fn play_with<F>(
 where
     F: FnMut(&Params, &Impact) -> Result<Outcome>,
 {
-    let mut shot = play_chain(scene, stroke, setup, &mut collision)?;
-    find_pocket(&mut shot, scene);
-    Ok(shot)
+    let mut played = play_chain(scene, stroke, setup, &mut collision);
+    if let Ok(shot) = &mut played {
+        find_pocket(shot, scene);
+    }
+    played
 }
 
 /// The shot chain of [`play`] and [`play_with`] but for [`Contact::pocket`], which it
