@@ -19,7 +19,7 @@ use crate::math;
 use crate::model::collide;
 use crate::outcome::Outcome;
 use crate::params::Params;
-use crate::shot::{play_with, ShotSetup, Stroke};
+use crate::shot::{play_chain, ShotSetup, Stroke};
 use crate::strike::TipOffset;
 use crate::table::Scene;
 use crate::vector::Vec3;
@@ -186,8 +186,11 @@ where
 
     let mut miss = |angle: f32| -> core::result::Result<(f32, Vec3, f32), AimError> {
         let stroke = Stroke::at_angle(cue_speed, tip, angle)?;
-        let shot = play_with(scene, &stroke, setup, &mut collision)?;
-        let contact = shot.contact.ok_or(AimError::ObjectBallNotHit)?;
+        // Borrowed where it lies: moving the shot or its contact out is a copy, on
+        // every evaluation.
+        let played = play_chain(scene, &stroke, setup, &mut collision);
+        let shot = played.as_ref().map_err(|e| *e)?;
+        let contact = shot.contact.as_ref().ok_or(AimError::ObjectBallNotHit)?;
         if contact.object_ball != object {
             return Err(AimError::ObjectBallNotHit);
         }

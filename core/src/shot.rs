@@ -136,9 +136,25 @@ pub struct Shot {
 /// `Auto` tolerance is out of range ([`Field::Tolerance`], whether or not a ball is
 /// hit).
 pub fn play(scene: &Scene, stroke: &Stroke, setup: &ShotSetup) -> Result<Shot> {
+    // Completed where it lies: moving a `Shot` (several hundred bytes) out of its
+    // `Result` and into a new one is two copies on the device (`memcpy`).
+    let mut played = play_without_pocket(scene, stroke, setup);
+    if let Ok(shot) = &mut played {
+        find_pocket(shot, scene);
+    }
+    played
+}
+
+/// [`play`] but for [`Contact::pocket`], left at `None`: for the guidance, which follows
+/// both balls' paths to their ends itself ([`crate::guidance`]).
+pub(crate) fn play_without_pocket(
+    scene: &Scene,
+    stroke: &Stroke,
+    setup: &ShotSetup,
+) -> Result<Shot> {
     check_model(setup.model)?;
     let model = setup.model;
-    play_with(scene, stroke, setup, |params, impact| {
+    play_chain(scene, stroke, setup, &mut |params, impact| {
         collide(params, impact, model)
     })
 }
@@ -152,6 +168,9 @@ pub(crate) fn check_model(model: Model) -> Result<()> {
     Ok(())
 }
 
+/// A collision predictor for the shot chain: the outcome of `impact` with `params`.
+pub(crate) type Collision<'a> = dyn FnMut(&Params, &Impact) -> Result<Outcome> + 'a;
+
 /// Play `stroke` on `scene`, predicting the collision with `collision` (e.g. a host-side
 /// reference solver); `setup.model` is not used.
 pub fn play_with<F>(
@@ -163,6 +182,26 @@ pub fn play_with<F>(
 where
     F: FnMut(&Params, &Impact) -> Result<Outcome>,
 {
+    let mut played = play_chain(scene, stroke, setup, &mut collision);
+    if let Ok(shot) = &mut played {
+        find_pocket(shot, scene);
+    }
+    played
+}
+
+/// The shot chain of [`play`] and [`play_with`] but for [`Contact::pocket`], which it
+/// leaves at `None` ([`find_pocket`] adds it), with the collision behind a `dyn`
+/// reference: the image holds one copy of the chain whatever the predictor, which
+/// `play`, the guidance and the aim solver's forward evaluations ([`crate::aim`]) share
+/// (each generic copy was about 2.5 KB on the Cortex-M4), and none of the pocket search
+/// when only the guidance and the aim solver are linked (they follow the object ball
+/// themselves).
+pub(crate) fn play_chain(
+    scene: &Scene,
+    stroke: &Stroke,
+    setup: &ShotSetup,
+    collision: &mut Collision<'_>,
+) -> Result<Shot> {
     let params = &setup.params;
     let radius = scene.radius();
     if math::abs(params.radius() - radius) > 1e-6 * radius {
@@ -204,7 +243,7 @@ where
         else {
             break None;
         };
-        match collide_at(scene, setup, &cue_before, aim, index, time, &mut collision)? {
+        match collide_at(scene, setup, &cue_before, aim, index, time, collision)? {
             Some(contact) => break Some(contact),
             None => passed |= 1 << index,
         }
@@ -216,18 +255,15 @@ where
     })
 }
 
-fn collide_at<F>(
+fn collide_at(
     scene: &Scene,
     setup: &ShotSetup,
     cue_before: &Motion,
     aim: Vec3,
     index: usize,
     time: f32,
-    collision: &mut F,
-) -> Result<Option<Contact>>
-where
-    F: FnMut(&Params, &Impact) -> Result<Outcome>,
-{
+    collision: &mut Collision<'_>,
+) -> Result<Option<Contact>> {
     let radius = scene.radius();
     let cue_position = cue_before.position_at(time);
     let object_position = scene.balls().get(index).copied().ok_or(Error::OutOfRange {
@@ -264,6 +300,27 @@ where
         radius,
         &setup.cloth,
     )?;
+    Ok(Some(Contact {
+        object_ball: index,
+        time,
+        cue_position,
+        line_of_centres: centres,
+        cut_angle: math::atan2(v_y, v_x),
+        impact,
+        outcome,
+        cue_after,
+        object_after,
+        pocket: None,
+    }))
+}
+
+/// Sets [`Contact::pocket`] of `shot`'s contact, if any: the first pocket of `scene`'s
+/// table whose target segment the object ball's centre crosses.
+fn find_pocket(shot: &mut Shot, scene: &Scene) {
+    let Some(contact) = shot.contact.as_mut() else {
+        return;
+    };
+    let object_after = &contact.object_after;
     let mut pocket: Option<(usize, f32)> = None;
     let reach = object_after.bounds();
     for (i, p) in scene.table().pockets().iter().enumerate() {
@@ -278,18 +335,7 @@ where
             }
         }
     }
-    Ok(Some(Contact {
-        object_ball: index,
-        time,
-        cue_position,
-        line_of_centres: centres,
-        cut_angle: math::atan2(v_y, v_x),
-        impact,
-        outcome,
-        cue_after,
-        object_after,
-        pocket,
-    }))
+    contact.pocket = pocket;
 }
 
 #[cfg(test)]

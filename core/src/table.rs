@@ -60,12 +60,32 @@ impl Pocket {
 }
 
 /// A rectangular table with up to six pockets.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, PartialEq)]
 pub struct Table {
     length: f32,
     width: f32,
-    pockets: heapless::Vec<Pocket, MAX_POCKETS>,
+    /// The pockets, `pockets[..pocket_count]`; the rest are unused (both ends at the
+    /// origin).
+    pockets: [Pocket; MAX_POCKETS],
+    pocket_count: usize,
 }
+
+impl core::fmt::Debug for Table {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Table")
+            .field("length", &self.length)
+            .field("width", &self.width)
+            .field("pockets", &self.pockets())
+            .finish()
+    }
+}
+
+/// The pool preset ([`Table::pool`]), laid out at compile time.
+const POOL: Table = Table::layout(2.54, 1.27, 0.116, 0.13, BallSet::POOL.radius);
+/// The snooker preset ([`Table::snooker`]).
+const SNOOKER: Table = Table::layout(3.569, 1.778, 0.086, 0.095, BallSet::SNOOKER.radius);
+/// The carom preset ([`Table::carom`]).
+const CAROM: Table = Table::layout(2.84, 1.42, 0.0, 0.0, BallSet::CAROM.radius);
 
 impl Table {
     /// A table of playing surface `length` × `width` (m, each in `(0, 10]`), with the
@@ -85,7 +105,32 @@ impl Table {
         let side_mouth = check(Field::Table, side_mouth, 0.0, 0.5 * length, false)?;
         // The pockets' target segments are moved in by the radius.
         let radius = check(Field::Radius, radius, 0.001, 1.0, false)?;
-        let mut pockets = heapless::Vec::new();
+        Ok(Self::layout(
+            length,
+            width,
+            corner_mouth,
+            side_mouth,
+            radius,
+        ))
+    }
+
+    /// The table of [`Table::new`] for arguments that pass its checks: a `const fn`, so
+    /// that the presets are laid out at compile time (the firmware then links no table
+    /// arithmetic; f32 arithmetic is IEEE 754 at compile time too, so the pockets are
+    /// the same to the bit).
+    const fn layout(
+        length: f32,
+        width: f32,
+        corner_mouth: f32,
+        side_mouth: f32,
+        radius: f32,
+    ) -> Self {
+        let unused = Pocket {
+            a: Vec3::ZERO,
+            b: Vec3::ZERO,
+        };
+        let mut pockets = [unused; MAX_POCKETS];
+        let mut count = 0;
         if corner_mouth > 0.0 {
             // Jaws on the two rails at `corner_mouth / √2` from the corner; the segment is
             // moved one radius in along the diagonal.
@@ -96,65 +141,55 @@ impl Table {
             // meets exactly mirrored pockets.
             let (a_near, a_far) = mirrored(width, inset);
             let (b_near, b_far) = mirrored(width, jaw + inset);
-            for (x, dx, a_y, b_y) in [
+            let corners = [
                 (0.0, 1.0, a_near, b_near),
                 (length, -1.0, a_near, b_near),
                 (0.0, 1.0, a_far, b_far),
                 (length, -1.0, a_far, b_far),
-            ] {
-                let a = Vec3::new(x + dx * (jaw + inset), a_y, 0.0);
-                let b = Vec3::new(x + dx * inset, b_y, 0.0);
-                pockets
-                    .push(Pocket { a, b })
-                    .map_err(|_| Error::OutOfRange {
-                        field: Field::Table,
-                        value: 0.0,
-                    })?;
+            ];
+            while count < corners.len() {
+                let (x, dx, a_y, b_y) = corners[count];
+                pockets[count] = Pocket {
+                    a: Vec3::new(x + dx * (jaw + inset), a_y, 0.0),
+                    b: Vec3::new(x + dx * inset, b_y, 0.0),
+                };
+                count += 1;
             }
         }
         if side_mouth > 0.0 {
             let (near, far) = mirrored(width, radius);
-            for y in [near, far] {
-                let a = Vec3::new(0.5 * (length - side_mouth), y, 0.0);
-                let b = Vec3::new(0.5 * (length + side_mouth), y, 0.0);
-                pockets
-                    .push(Pocket { a, b })
-                    .map_err(|_| Error::OutOfRange {
-                        field: Field::Table,
-                        value: 0.0,
-                    })?;
+            let sides = [near, far];
+            let mut i = 0;
+            while i < sides.len() {
+                pockets[count] = Pocket {
+                    a: Vec3::new(0.5 * (length - side_mouth), sides[i], 0.0),
+                    b: Vec3::new(0.5 * (length + side_mouth), sides[i], 0.0),
+                };
+                count += 1;
+                i += 1;
             }
         }
-        Ok(Self {
+        Self {
             length,
             width,
             pockets,
-        })
+            pocket_count: count,
+        }
     }
 
     /// 9-ft pool table: 2.54 × 1.27 m, corner mouths 116 mm, side mouths 130 mm.
     pub fn pool() -> Self {
-        Self::preset(2.54, 1.27, 0.116, 0.13, BallSet::POOL.radius)
+        POOL
     }
 
     /// Full-size snooker table: 3.569 × 1.778 m, corner mouths 86 mm, middle 95 mm.
     pub fn snooker() -> Self {
-        Self::preset(3.569, 1.778, 0.086, 0.095, BallSet::SNOOKER.radius)
+        SNOOKER
     }
 
     /// Carom (match) table: 2.84 × 1.42 m, no pockets.
     pub fn carom() -> Self {
-        Self::preset(2.84, 1.42, 0.0, 0.0, BallSet::CAROM.radius)
-    }
-
-    fn preset(length: f32, width: f32, corner: f32, side: f32, radius: f32) -> Self {
-        // The presets satisfy `new`'s checks; fall back to a pocketless table rather
-        // than panic if that ever changed.
-        Self::new(length, width, corner, side, radius).unwrap_or(Self {
-            length,
-            width,
-            pockets: heapless::Vec::new(),
-        })
+        CAROM
     }
 
     /// Length (m).
@@ -167,7 +202,7 @@ impl Table {
     }
     /// The pockets.
     pub fn pockets(&self) -> &[Pocket] {
-        &self.pockets
+        self.pockets.get(..self.pocket_count).unwrap_or(&[])
     }
 
     /// `true` when a ball of `radius` centred at `p` lies on the playing surface.
@@ -180,7 +215,7 @@ impl Table {
 /// exactly `W` minus the other in f32 and neither moves outwards (a side pocket's target
 /// stays on the cushion line or inside it): the far one is `W − y` rounded down, the
 /// near one `W − far`, exact (Sterbenz) as `far ≥ W/2`.
-fn mirrored(width: f32, y: f32) -> (f32, f32) {
+const fn mirrored(width: f32, y: f32) -> (f32, f32) {
     let mut far = width - y;
     if width - far < y && far > 0.0 {
         far = f32::from_bits(far.to_bits() - 1);
@@ -346,6 +381,52 @@ mod tests {
                 .pockets()
                 .iter()
                 .all(|p| p.a.is_finite() && p.b.is_finite()));
+        }
+    }
+
+    /// The presets, laid out at compile time, are the tables `Table::new` lays out at
+    /// run time from the same dimensions (which pass its checks), to the bit.
+    #[test]
+    fn presets_are_the_tables_new_lays_out() {
+        use core::hint::black_box;
+        let presets = [
+            (
+                Table::pool(),
+                [2.54, 1.27, 0.116, 0.13, BallSet::POOL.radius],
+                6,
+            ),
+            (
+                Table::snooker(),
+                [3.569, 1.778, 0.086, 0.095, BallSet::SNOOKER.radius],
+                6,
+            ),
+            (
+                Table::carom(),
+                [2.84, 1.42, 0.0, 0.0, BallSet::CAROM.radius],
+                0,
+            ),
+        ];
+        let bits = |t: &Table| {
+            let mut bits = std::vec![t.length().to_bits(), t.width().to_bits()];
+            for p in t.pockets() {
+                for v in [p.a, p.b] {
+                    bits.extend(v.to_array().map(f32::to_bits));
+                }
+            }
+            bits
+        };
+        for (preset, [length, width, corner, side, radius], pockets) in presets {
+            let built = Table::new(
+                black_box(length),
+                black_box(width),
+                black_box(corner),
+                black_box(side),
+                black_box(radius),
+            )
+            .unwrap();
+            assert_eq!(preset.pockets().len(), pockets);
+            assert_eq!(bits(&preset), bits(&built));
+            assert_eq!(preset, built);
         }
     }
 

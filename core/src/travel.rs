@@ -309,6 +309,9 @@ impl Motion {
 
     /// Position at time `t` (s) after the start (clamped to the rest position; a
     /// negative or NaN time is the start).
+    // Not inlined into its uses in the shot chain and the guidance (100 B of the
+    // firmware's flash).
+    #[inline(never)]
     pub fn position_at(&self, t: f32) -> Vec3 {
         self.start + self.displacement_at(t)
     }

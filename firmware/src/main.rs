@@ -1,6 +1,7 @@
 //! cuesight on a Cortex-M4F: answers the newline-delimited JSON protocol of
 //! `cuesight-protocol` on the board's serial port (`collide`, `params`, `stroke`,
-//! `version`, `shutdown`; see `docs/protocol.md`), logging with defmt.
+//! `shot` with the `shot` feature, a default one, `version`, `shutdown`; see
+//! `docs/protocol.md`), logging with defmt.
 //!
 //! At boot it runs every model on a few built-in shots as a self-test (exit with
 //! failure if any outcome is not finite and sane), then serves until a `shutdown`

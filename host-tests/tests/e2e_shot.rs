@@ -1,7 +1,7 @@
-//! End to end, `shot`: the firmware image built with `--features shot`, booted in QEMU
-//! (mps2-an386), answers seeded `shot` requests byte for byte as the host session does
-//! (and the host session answers as `cuesight shot --json`: `tests/shot_protocol.rs`),
-//! with its peak stack within the 8 KiB budget.
+//! End to end, `shot`: the release firmware image (`shot` is one of its default
+//! features), booted in QEMU (mps2-an386), answers seeded `shot` requests byte for byte
+//! as the host session does (and the host session answers as `cuesight shot --json`:
+//! `tests/shot_protocol.rs`), with its peak stack within the 8 KiB budget.
 //!
 //! `#[ignore]`d in plain `cargo test`: it needs that image. `cargo xtask test` builds it
 //! and runs this with `CUESIGHT_FIRMWARE_ELF` pointing at it.
@@ -24,7 +24,7 @@ const SCENES: usize = 60;
 const STACK_BUDGET: u32 = 8 * 1024;
 
 #[test]
-#[ignore = "needs the firmware built with --features shot (cargo xtask test)"]
+#[ignore = "needs the release firmware with the shot request (cargo xtask test)"]
 fn firmware_answers_shot_requests_as_the_host_session() {
     let started = Instant::now();
     let elf = default_elf();
@@ -65,9 +65,8 @@ fn firmware_answers_shot_requests_as_the_host_session() {
         let rest = line.split("peak stack ").nth(1)?;
         rest.split_whitespace().next()?.parse::<u32>().ok()
     });
-    // Issue 6's stack budget holds for this image too (the shot's solve is the deepest
-    // path in the firmware); its flash is over budget, which is why the release image
-    // leaves `shot` out (docs/reliability.md).
+    // Issue 6's stack budget: the shot's solve is the deepest path in the firmware
+    // (its flash is held to the budget by `cargo xtask test`, docs/reliability.md).
     let peak = peak.expect("a 'peak stack' line in the decoded log (needs defmt-print)");
     println!("e2e shot: peak stack {peak} bytes (budget {STACK_BUDGET})");
     assert!(

@@ -205,9 +205,20 @@ impl Session {
     #[cfg(feature = "shot")]
     #[inline(never)]
     fn shot(&self, r: &mut Reader<'_>, out: &mut AnswerLine) -> Result<(), Problem> {
-        let (prepared, speed, tip) = self.prepare_shot(r)?;
-        let guidance = run_guide(&prepared, speed)?;
-        write_shot(out, tip, prepared.model, &guidance);
+        // The prepared shot and the guidance are read where they lie: moved out of
+        // their `Result`s, each (a few hundred bytes) would be copied, and be on this
+        // frame twice.
+        let prepared = self.prepare_shot(r);
+        let (prepared, speed, tip) = match prepared {
+            Ok(ref prepared) => prepared,
+            Err(problem) => return Err(problem),
+        };
+        let guidance = run_guide(prepared, *speed);
+        let guidance = match guidance {
+            Ok(ref guidance) => guidance,
+            Err(error) => return Err(error.into()),
+        };
+        write_shot(out, *tip, prepared.model, guidance);
         Ok(())
     }
 

@@ -153,6 +153,8 @@ impl Shot {
     /// Validate against `defaults` through the core's constructors: contact
     /// parameters, cue, cloth, tip, then the balls (each on the table, none
     /// overlapping), then the aim or target. Errors name the field.
+    // Not inlined: see `decode::read_shot`.
+    #[inline(never)]
     pub fn prepare(&self, defaults: &Defaults) -> Result<PreparedShot, Problem> {
         let set = self.table.balls();
         let mut with = self.with;

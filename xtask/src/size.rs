@@ -102,31 +102,3 @@ pub fn check_budgets(elf: &Path) -> Result {
     println!("flash {flash} bytes: within the budget of {FLASH_BUDGET}");
     Ok(())
 }
-
-/// [`report`] for the image with the `shot` request, which is not the shipped one: fails
-/// if static RAM exceeds [`STATIC_RAM_BUDGET`], and says how far flash is from
-/// [`FLASH_BUDGET`] (over it, which is why the release image leaves `shot` out; its
-/// peak stack is checked by its end-to-end test).
-pub fn check_shot_image(elf: &Path) -> Result {
-    report(elf)?;
-    let bytes =
-        std::fs::read(elf).map_err(|e| Failure::new(format!("reading {}: {e}", elf.display())))?;
-    let s = sizes(&bytes).ok_or_else(|| Failure::new("not a 32-bit ELF"))?;
-    let (flash, ram) = (s.text + s.data, s.data + s.bss);
-    if ram > STATIC_RAM_BUDGET {
-        return Err(Failure::new(format!(
-            "static RAM {ram} bytes exceeds the budget of {STATIC_RAM_BUDGET}"
-        )));
-    }
-    println!("static RAM {ram} bytes: within the budget of {STATIC_RAM_BUDGET}");
-    if flash > FLASH_BUDGET {
-        println!(
-            "flash {flash} bytes: {} over the budget of {FLASH_BUDGET} (reported, not enforced: \
-             the release image leaves the shot request out)",
-            flash - FLASH_BUDGET
-        );
-    } else {
-        println!("flash {flash} bytes: within the budget of {FLASH_BUDGET}");
-    }
-    Ok(())
-}

@@ -21,6 +21,7 @@
 //!   log never mixes with the protocol on stdout.
 //! * **Exit:** semihosting `SYS_EXIT`, which QEMU turns into its own exit code.
 //! * **Stack:** painted at boot, so [`peak_stack`] can tell how deep it went.
+//! * **Vectors:** one per interrupt line of the device, 48 ([`vectors`]).
 
 use core::convert::Infallible;
 use core::sync::atomic::{AtomicBool, Ordering};
@@ -30,6 +31,7 @@ use cortex_m::peripheral::NVIC;
 use cortex_m_semihosting::debug;
 
 mod log;
+mod vectors;
 
 use super::stack;
 pub use stack::peak as peak_stack;
