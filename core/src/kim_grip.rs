@@ -214,8 +214,7 @@ pub(crate) fn initial_slip<R: Real>(params: &Params, impact: &Impact) -> (R, R) 
 /// `−x` magnitude and the `y` component of the table impulse.
 #[inline(always)]
 fn table_friction_components<R: Real>(table: R, span: R, j_y: R, j_z: R) -> (R, R) {
-    let slip_x = span - table - (j_z + table) / nu::<R>();
-    let slip_y = j_y;
+    let (slip_x, slip_y) = table_contact_slip(table, span, j_y, j_z);
     let length = R::sqrt(slip_x * slip_x + slip_y * slip_y);
     if length > R::ZERO {
         let scale = table / length;
@@ -224,6 +223,13 @@ fn table_friction_components<R: Real>(table: R, span: R, j_y: R, j_z: R) -> (R, 
         // No slip at the table contact: no direction; the seed's −x (eq. (7)).
         (table, R::ZERO)
     }
+}
+
+/// The object ball's table-contact slip `(c_x, c_y)` (m/s) at the end of the pressing
+/// span (see [`table_friction_components`]), for table friction `table` (m/s).
+#[inline(always)]
+fn table_contact_slip<R: Real>(table: R, span: R, j_y: R, j_z: R) -> (R, R) {
+    (span - table - (j_z + table) / nu::<R>(), j_y)
 }
 
 /// The initial tangential slip and the quantities derived from it. The slip
@@ -384,6 +390,32 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The fast path's topspin branch has no zero-length branch for the table-contact
+    /// slip: a slip whose square underflows (a vanishing approach speed) gives an
+    /// infinite or NaN table friction there, which its guard must hand to the general
+    /// path. Without that guard these scenes come out NaN.
+    #[test]
+    fn underflowing_table_slip_takes_the_general_path() {
+        let params = Params::POOL;
+        let mut declined = 0;
+        for approach in [f32::from_bits(1), 1e-44, 1e-40, 1e-38, 1e-30, 1e-22, 1e-19] {
+            for side in [0.0, 1e-30, 0.5] {
+                // Topspin: the object ball is pressed into the cloth.
+                let impact = Impact::from_velocity([approach, side], [0.0, 70.0, 0.0])
+                    .expect("valid impact");
+                let fast = fast_path::collide::<f32>(&params, &impact);
+                if let Some(outcome) = fast {
+                    assert!(outcome.is_finite(), "a = {approach:e}: {outcome:?}");
+                } else {
+                    declined += 1;
+                }
+                let outcome = collide::<f32>(&params, &impact).expect("a finite outcome");
+                assert!(outcome.is_finite(), "a = {approach:e}: {outcome:?}");
+            }
+        }
+        assert!(declined > 0, "no scene reached the table-slip guard");
     }
 
     #[test]

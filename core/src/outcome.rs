@@ -56,6 +56,19 @@ pub struct Impulses {
     pub table_friction: f32,
 }
 
+/// Which ball the ball–ball friction lifts off the table (`v_z = |j_z|`; the other
+/// is pressed into the cloth and keeps `v_z = 0`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Lifted {
+    /// Decided by the sign of `j_z`, the vertical friction on the object ball: the
+    /// object ball if `j_z > 0`, else the cue ball.
+    BySign,
+    /// The cue ball: the caller knows `j_z ≤ 0` (the slip `v_z0 > 0`, topspin).
+    Cue,
+    /// The object ball: the caller knows `j_z ≥ 0` (`v_z0 ≤ 0`).
+    Object,
+}
+
 /// Impulses per unit mass (m/s) handed from a model to [`Outcome::from_impulses`],
 /// in the model's evaluation precision `R`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -174,19 +187,27 @@ impl Outcome {
         if !j.is_bounded() {
             return Err(Error::NumericalFailure);
         }
-        Ok(Self::assemble::<R, true>(params, impact, j, regime))
+        Ok(Self::assemble::<R, true>(
+            params,
+            impact,
+            j,
+            regime,
+            Lifted::BySign,
+        ))
     }
 
     /// [`Outcome::from_impulses`] without the guard, for a caller that has checked
     /// its impulses itself (`kim_grip::fast_path`). With `OBJECT_TABLE` false the
     /// object ball's table friction is known to be zero and its terms are left out
-    /// (`x + 0` does not fold in IEEE arithmetic).
+    /// (`x + 0` does not fold in IEEE arithmetic). `lifted` says which ball leaves the
+    /// table, when the caller knows it (a constant there, so the test folds away).
     #[inline(always)]
     pub(crate) fn assemble<R: Real, const OBJECT_TABLE: bool>(
         params: &Params,
         impact: &Impact,
         j: SpecificImpulses<R>,
         regime: Regime,
+        lifted: Lifted,
     ) -> Self {
         let SpecificImpulses {
             normal,
@@ -211,10 +232,11 @@ impl Outcome {
         let w = impact.spin();
         let vec = |x: R, y: R, z: R| Vec3::new(x.to_f32(), y.to_f32(), z.to_f32());
         // The ball the vertical friction pushes up leaves the table with |j_z|.
-        let (cue_lift, object_lift) = if j_z > zero {
-            (zero, j_z)
-        } else {
-            (-j_z, zero)
+        let (cue_lift, object_lift) = match lifted {
+            Lifted::Cue => (R::abs(j_z), zero),
+            Lifted::Object => (zero, R::abs(j_z)),
+            Lifted::BySign if j_z > zero => (zero, j_z),
+            Lifted::BySign => (-j_z, zero),
         };
         // Cue ball: r × (−J) with r = R x̂ gives R (0, j_z, −j_y); its table friction T
         // at −R ẑ gives R (T_y, −T_x, 0). Without cue-ball table friction (a constant

@@ -14,9 +14,9 @@
 //! Returns `None` when the scene is outside that case; the caller then runs the
 //! general path. `host-tests` and the unit tests below check that both paths agree.
 
-use super::{final_normal_impulse, k_y, table_friction_components};
+use super::{final_normal_impulse, k_y, table_contact_slip};
 use crate::impact::Impact;
-use crate::outcome::{Outcome, Regime, SpecificImpulses};
+use crate::outcome::{Lifted, Outcome, Regime, SpecificImpulses};
 use crate::params::Params;
 use crate::real::Real;
 
@@ -103,7 +103,13 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
         let first_normal = R::of(0.5) * one_plus_restitution * approach;
         let fraction = R::min(first_normal / grip_normal, R::ONE);
         let (mid_y, mid_z) = mid_slip(fraction);
-        mu * mu_s * R::abs(mid_z) / R::sqrt(mid_y * mid_y + mid_z * mid_z)
+        // v_m,z > 0 here (it keeps v_z0's sign, see `lifted` below): no absolute value.
+        let mu_mu_s = if R::SINGLE {
+            R::of(derived.kim_grip_mu_mu_s)
+        } else {
+            mu * mu_s
+        };
+        mu_mu_s * mid_z / R::sqrt(mid_y * mid_y + mid_z * mid_z)
     } else {
         R::ZERO
     };
@@ -125,9 +131,14 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
         (stick_y, stick_z, Regime::Gripping, grip_normal)
     };
     let (table, table_y, table_size) = if OBJECT_PRESSED {
+        // `table_friction_components` without its zero-slip branch: a table-contact
+        // slip of zero length (or one whose square underflows) makes `scale` infinite
+        // or NaN and so `table` infinite or NaN (`∞ · 0` included), which the guard
+        // below sends to the general path, whose branch handles it.
         let size = table_rate * span;
-        let (table, table_y) = table_friction_components(size, span, j_y, j_z);
-        (table, table_y, size)
+        let (slip_x, slip_y) = table_contact_slip(size, span, j_y, j_z);
+        let scale = size / R::sqrt(slip_x * slip_x + slip_y * slip_y);
+        (scale * slip_x, -scale * slip_y, size)
     } else {
         (R::ZERO, R::ZERO, R::ZERO)
     };
@@ -135,10 +146,19 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
     // others derive from), implied by a bound on the normal impulse alone: |j| ≤
     // max(μ p, s*) and table_size = ρ span ≤ p, with μ ≤ 1 and s* ≤ |v₀|/k_z below
     // 1e4 m/s for validated inputs, so p ≤ 1e17 keeps the sum under 3e34 + 1e8. A NaN
-    // anywhere upstream makes p NaN and fails the test too.
-    let bounded = normal <= R::of(1e17);
+    // anywhere upstream makes p NaN and fails the test too. With the object ball
+    // pressed, `|table|` joins the sum: it is at most `table_size ≤ p`, unless the table
+    // direction above failed; then `scale` is ∞ or NaN and `table = scale c_x` is ∞ or
+    // NaN too (`∞ · 0` is NaN), while `table_y` can only fail along with it.
+    let guarded = if OBJECT_PRESSED {
+        normal + R::abs(table)
+    } else {
+        normal
+    };
+    let bounded = guarded <= R::of(1e17);
     if !bounded {
-        // The general path repeats the scene and its guard returns the error.
+        // The general path repeats the scene: its guard returns the error, or its
+        // zero-slip branch gives the table friction a direction.
         return None;
     }
     let impulses = SpecificImpulses {
@@ -151,7 +171,15 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
         cue_table_x: R::ZERO,
         cue_table_y: R::ZERO,
     };
+    // The friction opposes the slip, whose z component keeps its sign while it
+    // shrinks (`α k_z ≤ k_z/(k_y + k_z) < 1`), and so does the stick impulse: with
+    // `v_z0 > 0` the friction pushes the cue ball up (`j_z < 0`), else the object ball.
+    let lifted = if OBJECT_PRESSED {
+        Lifted::Cue
+    } else {
+        Lifted::Object
+    };
     Some(Outcome::assemble::<R, OBJECT_PRESSED>(
-        params, impact, impulses, regime,
+        params, impact, impulses, regime, lifted,
     ))
 }
