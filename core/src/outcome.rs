@@ -157,12 +157,19 @@ impl Outcome {
         } else {
             Regime::Gripping
         };
-        Self::from_impulses(
+        // The guard of `from_impulses` with the other impulses known to be zero (and so
+        // their terms left out); no ball leaves the table.
+        let impulses = SpecificImpulses::normal_only(normal);
+        if !impulses.is_bounded() {
+            return Err(Error::NumericalFailure);
+        }
+        Ok(Self::assemble::<R, false>(
             params,
             impact,
-            SpecificImpulses::normal_only(normal),
+            impulses,
             regime,
-        )
+            Lifted::Object,
+        ))
     }
 
     /// Assemble both balls' final states from the impulses `j` (all per unit mass, m/s).

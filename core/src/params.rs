@@ -33,8 +33,8 @@ pub(crate) struct Derived {
     /// applies, +∞ when not, so that one comparison of the slip sends every other
     /// scene to the general path.
     pub kim_grip_min_slip_squared: f32,
-    /// `1 + e*`.
-    pub one_plus_restitution: f32,
+    /// `(1 + e*)/2`: the frictionless normal impulse per unit approach speed.
+    pub half_one_plus_restitution: f32,
     /// `μ μ_s` for the fast path's table-friction rate (`kim_grip_mu` times μ_s).
     pub kim_grip_mu_mu_s: f32,
     /// `k_z = (2 + ν − μ_s)/ν = 6 − 2.5 μ_s` when the object ball is pressed into the
@@ -70,7 +70,7 @@ impl Derived {
                 f32::INFINITY
             },
             kim_grip_mu_mu_s: kim_grip_mu * mu_s,
-            one_plus_restitution: 1.0 + restitution,
+            half_one_plus_restitution: 0.5 * (1.0 + restitution),
             pressed_k_z,
             pressed_boundary: 1.0 / (7.0 + pressed_k_z),
             spin_per_impulse: 2.5 / radius,

@@ -8,13 +8,23 @@
 //! * constant μ makes the friction budget `S(p) = μ p`, so the fraction of the stick
 //!   budget spent is `p / p*` and the table-friction rate is `ρ = μ μ_s |ĵ_z|` with no
 //!   division by the span;
+//! * with the object ball pressed, `(1+e)a/2 ≥ p*` settles the grip before `ρ` is
+//!   known (the table friction only raises the normal impulse);
 //! * the slip is used unscaled: `|v₀|² ≥ MIN_SLIP_SQUARED` keeps every square far from
-//!   underflow (tinier slips take the scaled general path).
+//!   underflow (tinier slips are exact gearing in the general path);
+//! * no clamps where only rounding (or a zero-length table-contact slip) could take a
+//!   square root's argument below zero or divide zero by zero: the NaN that results
+//!   fails the final guard, and the general path, which has the clamps, repeats the
+//!   scene.
+//!
+//! Every branch is straight-line code: `bench-firmware`'s `kimgrip-count` counts one
+//! shot per branch, and `cargo xtask test` fails if one takes more than 150
+//! instructions on the Cortex-M4F.
 //!
 //! Returns `None` when the scene is outside that case; the caller then runs the
 //! general path. `host-tests` and the unit tests below check that both paths agree.
 
-use super::{final_normal_impulse, k_y, table_contact_slip};
+use super::{final_normal_impulse, gripped_normal_impulse, k_y, table_contact_slip};
 use crate::impact::Impact;
 use crate::outcome::{Lifted, Outcome, Regime, SpecificImpulses};
 use crate::params::Params;
@@ -75,60 +85,84 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
         let k_z = R::of(6.0) - R::of(2.5) * mu_s;
         (k_z, R::ONE / (k_y::<R>() + k_z))
     };
-    let one_plus_restitution = if R::SINGLE {
-        R::of(derived.one_plus_restitution)
+    let half_one_plus_restitution = if R::SINGLE {
+        R::of(derived.half_one_plus_restitution)
     } else {
-        R::ONE + R::of(params.restitution())
+        R::of(0.5) * (R::ONE + R::of(params.restitution()))
     };
-    // Stick impulse j_stick = −K⁻¹ v₀ and the budget s* = |j_stick| that stops the slip.
+    // Stick impulse j_stick = −K⁻¹ v₀ and the budget s* = |j_stick| that stops the
+    // slip. `stick_z` is kept as −K⁻¹v₀'s z component with its sign flipped (> 0 with
+    // the object ball pressed): only its square and its ratio to s* are needed unless
+    // the contact grips.
     let stick_y = -slip_y / k_y::<R>();
-    let stick_z = -slip_z / k_z;
-    let (stick_budget, slip_norm) =
-        R::sqrt_pair(stick_y * stick_y + stick_z * stick_z, slip_squared);
-    // σ = s*/|v₀| and α_b/|v₀| = 1/(k_y + k_z): the direction's shape parameters.
-    let half_sigma = R::of(0.5) * stick_budget / slip_norm;
-    let curvature = boundary - half_sigma;
-    // The mid-point slip v_m = v₀ − α K v̂₀ after spending the fraction f = S/s* ≤ 1
-    // of the stick budget, α/|v₀| = f (σ/2 + (α_b/|v₀| − σ/2) f).
-    let (stiff_y, stiff_z) = (k_y::<R>() * slip_y, k_z * slip_z); // K v₀
-    let mid_slip = |fraction: R| -> (R, R) {
-        let alpha = fraction * (half_sigma + curvature * fraction);
-        (slip_y - alpha * stiff_y, slip_z - alpha * stiff_z)
-    };
+    let stick_z_flipped = slip_z / k_z;
+    let (stick_budget, slip_norm) = R::sqrt_pair(
+        stick_y * stick_y + stick_z_flipped * stick_z_flipped,
+        slip_squared,
+    );
     let grip_normal = stick_budget / mu; // p*, m/s
     let restitution = R::of(params.restitution());
     let approach = R::of(impact.velocity().x);
-    let table_rate = if OBJECT_PRESSED {
-        // ρ = μ μ_s |ĵ_z| at the first-order end of the slide, p = min((1+e)a/2, p*).
-        let first_normal = R::of(0.5) * one_plus_restitution * approach;
-        let fraction = R::min(first_normal / grip_normal, R::ONE);
-        let (mid_y, mid_z) = mid_slip(fraction);
-        // v_m,z > 0 here (it keeps v_z0's sign, see `lifted` below): no absolute value.
+    // The first-order normal impulse (1+e)a/2 (no table friction).
+    let first_normal = half_one_plus_restitution * approach;
+    let (table_rate, normal, slides) = if !OBJECT_PRESSED {
+        let (normal, slides) = final_normal_impulse::<R, false>(
+            approach,
+            restitution,
+            first_normal,
+            R::ZERO,
+            grip_normal,
+        );
+        (R::ZERO, normal, slides)
+    } else {
+        // ρ = μ μ_s |ĵ_z| (see `pressing_share` in the parent module): |ĵ_z| is v̂₀'s
+        // z component at f = 0 and the stick impulse's at f = 1, interpolated at the
+        // first-order end of the slide, f = min((1+e)a/2 / p*, 1). Both are > 0 here.
         let mu_mu_s = if R::SINGLE {
             R::of(derived.kim_grip_mu_mu_s)
         } else {
             mu * mu_s
         };
-        mu_mu_s * mid_z / R::sqrt(mid_y * mid_y + mid_z * mid_z)
-    } else {
-        R::ZERO
+        let end = stick_z_flipped / stick_budget;
+        if first_normal >= grip_normal {
+            // f = 1, and the contact grips: the table friction (ρ ≥ 0) only raises
+            // the normal impulse above (1+e)a/2 ≥ p*.
+            let table_rate = mu_mu_s * end;
+            let relief = R::ONE - R::of(0.5) * table_rate;
+            let normal =
+                gripped_normal_impulse::<R, false>(approach, restitution, relief, grip_normal);
+            (table_rate, normal, false)
+        } else {
+            let start = slip_z / slip_norm;
+            let fraction = first_normal / grip_normal;
+            let table_rate = mu_mu_s * (start + fraction * (end - start));
+            let (normal, slides) = final_normal_impulse::<R, false>(
+                approach,
+                restitution,
+                first_normal,
+                table_rate,
+                grip_normal,
+            );
+            (table_rate, normal, slides)
+        }
     };
-    let (normal, slides) = final_normal_impulse(
-        approach,
-        restitution,
-        one_plus_restitution,
-        table_rate,
-        grip_normal,
-    );
     // The span over which the object ball is pressed is min(p, p*): the branch
     // taken says which.
     let (j_y, j_z, regime, span) = if slides {
-        let (mid_y, mid_z) = mid_slip(normal / grip_normal);
+        // σ = s*/|v₀| and α_b/|v₀| = 1/(k_y + k_z): the direction's shape parameters.
+        let half_sigma = R::of(0.5) * stick_budget / slip_norm;
+        let curvature = boundary - half_sigma;
+        // The mid-point slip v_m = v₀ − α K v₀/|v₀| after spending the fraction
+        // f = μp/s* ≤ 1 of the stick budget, α/|v₀| = f (σ/2 + (α_b/|v₀| − σ/2) f).
+        let fraction = normal / grip_normal;
+        let alpha = fraction * (half_sigma + curvature * fraction);
+        let mid_y = slip_y - alpha * (k_y::<R>() * slip_y);
+        let mid_z = slip_z - alpha * (k_z * slip_z);
         // j = μ p · (−v_m/|v_m|).
         let scale = mu * normal / R::sqrt(mid_y * mid_y + mid_z * mid_z);
         (-scale * mid_y, -scale * mid_z, Regime::Sliding, normal)
     } else {
-        (stick_y, stick_z, Regime::Gripping, grip_normal)
+        (stick_y, -stick_z_flipped, Regime::Gripping, grip_normal)
     };
     let (table, table_y, table_size) = if OBJECT_PRESSED {
         // `table_friction_components` without its zero-slip branch: a table-contact
