@@ -80,6 +80,7 @@ pub fn run(args: &Args) -> Result {
     let timeout = Duration::from_secs(args.timeout);
     let runs = firmware::measure(&scenes, &dir, timeout)?;
     let trace_check = firmware::trace_check(&scenes, &dir, timeout)?;
+    let (branches, _) = regression::count_branches()?;
 
     section("errors against the reference");
     let listings: Vec<PathBuf> = runs
@@ -103,6 +104,7 @@ pub fn run(args: &Args) -> Result {
         counted: args.counted,
         runs: &runs,
         trace_check: &trace_check,
+        branches: &branches,
         errors: &errors,
         timings: timings.as_ref(),
     };
