@@ -330,8 +330,10 @@ fn branch_table(report: &Value) -> String {
          collision. A branch has no loop, so one shot per branch covers them all \
          (`bench-firmware/src/bin/kimgrip_count.rs`; which branch each shot takes is \
          checked by the core's `gate_shots_take_their_branches`; `cargo xtask test` fails \
-         above {KIM_GRIP_TARGET}). The general path serves the speed-dependent μ and \
-         the cue ball's table friction:\n\n\
+         above {KIM_GRIP_TARGET}). The general path serves everything else: no friction, \
+         exact gearing, the cue ball's table friction, and the speed-dependent μ, \
+         which needs an `exp` and Newton steps and is not what the target's \
+         op-count floor describes:\n\n\
          | shot | path | instructions |\n|---|---|---:|\n",
         instructions(fast_max),
         verdict(fast_max <= KIM_GRIP_TARGET),
