@@ -69,6 +69,10 @@ fn boot(elf: &Path) -> Result<Firmware> {
 pub fn run_session(elf: &Path, session: &Path, timeout: Duration) -> Result {
     let text = std::fs::read_to_string(session)
         .map_err(|e| Failure::new(format!("reading {}: {e}", session.display())))?;
+    // Install QEMU and defmt-print (minutes on a bare machine) before the deadline
+    // starts: the timeout is for the session, not for the installs.
+    tools::ensure_qemu()?;
+    tools::defmt_print()?;
     let deadline = Instant::now() + timeout;
     println!(
         "xtask: playing {} (timeout {} s)",
