@@ -33,6 +33,8 @@ pub const TOLERANCE: f32 = 1e-5;
 /// Why no aim was found.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub enum AimError {
     /// An input is invalid.
     Invalid(Error),

@@ -9,6 +9,8 @@ pub type Result<T> = core::result::Result<T, Error>;
 /// An input quantity, named in errors.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub enum Field {
     /// Cue-ball speed before impact `U_i` (m/s).
     Speed,
@@ -162,6 +164,8 @@ impl Field {
 /// Everything that can go wrong. The core never panics and never returns NaN.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub enum Error {
     /// The value is NaN or infinite.
     NotFinite {
