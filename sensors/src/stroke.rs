@@ -160,7 +160,6 @@ struct Plan {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub enum ConfigField {
     /// `sample_rate_hz` not in `[500, 100 000]`.
     SampleRate,
@@ -226,7 +225,6 @@ impl fmt::Display for ConfigField {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub enum StrokeError {
     /// A configuration value is out of range.
     InvalidConfig(ConfigField),
