@@ -1,0 +1,301 @@
+//! Typed errors: everything the device can refuse, as data. The device never formats
+//! text; the host console turns these into sentences (`cuesight device`), as defmt does
+//! for logs.
+
+use cuesight::aim::AimError;
+use cuesight_sensors::{ConfigField, StrokeError};
+use serde::{Deserialize, Serialize};
+
+/// Why a request got no answer but this one.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
+#[serde(rename_all = "snake_case")]
+pub enum LinkError {
+    /// The frame itself could not be read.
+    Frame(FrameFault),
+    /// The frame's schema hash is not the device's: the two ends were built from
+    /// different schemas. Nothing in the frame was read.
+    SchemaMismatch {
+        /// The device's schema hash ([`crate::SCHEMA_HASH`] of its build).
+        device: u32,
+        /// The hash the frame carried.
+        host: u32,
+    },
+    /// The frame is out of sequence (see [`SequenceFault`]); it was not acted on.
+    Sequence(SequenceFault),
+    /// An input value is refused by the core (the field and the value).
+    Invalid(cuesight::Error),
+    /// `spin` and `roll` were both given.
+    SpinAndRoll,
+    /// `shot`: neither `aim` nor `pocket`.
+    MissingAim,
+    /// A valid request this device does not serve.
+    Unsupported(Unsupported),
+    /// `shot`: no aim pockets the ball.
+    NoAim(NoAim),
+    /// The stroke's samples hold no usable stroke.
+    Stroke(StrokeRejected),
+    /// A stroke chunk that breaks the upload (the stroke in progress is dropped).
+    Upload(UploadFault),
+    /// The answer did not fit a frame (a bug: sizes are tested).
+    AnswerTooLarge,
+}
+
+/// What is wrong with a frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
+#[serde(rename_all = "snake_case")]
+pub enum FrameFault {
+    /// Not valid COBS: a zero byte cut a block short (bytes lost).
+    Cobs,
+    /// Longer than [`crate::frame::MAX_FRAME`]; skipped to its end.
+    Oversized {
+        /// Encoded bytes received before its zero.
+        length: u32,
+    },
+    /// Shorter than a header and a CRC.
+    Short {
+        /// Raw bytes.
+        length: u16,
+    },
+    /// The CRC does not match: bytes were changed on the way.
+    Crc {
+        /// The sequence number as read (not to be trusted).
+        seq_as_read: u16,
+    },
+    /// The body is not a message of the schema.
+    Undecodable,
+    /// The body is a message, with bytes left over.
+    TrailingBytes {
+        /// How many.
+        count: u16,
+    },
+}
+
+/// A frame out of sequence. The host numbers its frames 0, 1, 2, ... (wrapping); the
+/// first frame after boot, and any `version` request, may carry any number and starts
+/// the count again.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
+#[serde(rename_all = "snake_case")]
+pub enum SequenceFault {
+    /// The same number as the frame before: sent twice.
+    Duplicate {
+        /// The number.
+        seq: u16,
+    },
+    /// Older than the frame before: reordered or replayed.
+    Stale {
+        /// The frame's number.
+        seq: u16,
+        /// The number expected.
+        expected: u16,
+    },
+    /// Newer than expected: frames in between were lost.
+    Gap {
+        /// The frame's number.
+        seq: u16,
+        /// The number expected.
+        expected: u16,
+    },
+}
+
+/// A request this device does not serve.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
+#[serde(rename_all = "snake_case")]
+pub enum Unsupported {
+    /// `model: reference` runs on the host only.
+    ReferenceModel,
+    /// `shot`: the image was built without the `shot` feature.
+    Shot,
+}
+
+/// Why no aim pockets the ball (`cuesight::aim::AimError`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
+#[serde(rename_all = "snake_case")]
+pub enum NoAim {
+    /// At the ghost-ball aim the cue ball does not hit the object ball first.
+    ObjectBallNotHit,
+    /// The object ball stops, or passes the mouth, before the pocket.
+    PocketUnreachable,
+    /// The solver did not converge (e.g. the cut is too thin).
+    NotConverged,
+}
+
+impl From<AimError> for LinkError {
+    fn from(error: AimError) -> Self {
+        match error {
+            AimError::Invalid(error) => LinkError::Invalid(error),
+            AimError::ObjectBallNotHit => LinkError::NoAim(NoAim::ObjectBallNotHit),
+            AimError::PocketUnreachable => LinkError::NoAim(NoAim::PocketUnreachable),
+            AimError::NotConverged => LinkError::NoAim(NoAim::NotConverged),
+        }
+    }
+}
+
+impl From<cuesight::Error> for LinkError {
+    fn from(error: cuesight::Error) -> Self {
+        LinkError::Invalid(error)
+    }
+}
+
+/// Why the stroke estimator found no stroke (`cuesight_sensors::StrokeError`; sample
+/// indices count from the stroke's first sample, all chunks).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
+#[serde(rename_all = "snake_case")]
+pub enum StrokeRejected {
+    /// `rate_hz` outside [500, 100000] Hz.
+    RateOutOfRange,
+    /// `scale` makes the full scale no larger than the impact threshold.
+    ScaleTooSmall,
+    /// Fewer samples than the rest window and the detectors need.
+    TooShort {
+        /// Samples given.
+        samples: u32,
+        /// Samples needed at this rate.
+        needed: u32,
+    },
+    /// `scale` is not a finite, non-zero number.
+    BadScale,
+    /// No rest of 150 ms before the impact (the capture must start with the cue still).
+    NotAtRest,
+    /// No impact-sized deceleration after the rest.
+    NoImpact,
+    /// A sample between the rest and the impact is at the sensor's full scale.
+    Saturated {
+        /// The sample.
+        index: u32,
+    },
+    /// The integrated speed at impact is not forward (wrong axis sign, or no stroke).
+    NotForward {
+        /// The integrated speed (m/s).
+        speed: f32,
+    },
+}
+
+impl From<StrokeError> for LinkError {
+    fn from(error: StrokeError) -> Self {
+        let rejected = match error {
+            StrokeError::InvalidConfig(ConfigField::SampleRate) => StrokeRejected::RateOutOfRange,
+            StrokeError::InvalidConfig(_) => StrokeRejected::ScaleTooSmall,
+            StrokeError::TooShort { len, min } => StrokeRejected::TooShort {
+                samples: len as u32,
+                needed: min as u32,
+            },
+            StrokeError::NotFinite { .. } | StrokeError::LengthMismatch { .. } => {
+                StrokeRejected::BadScale
+            }
+            StrokeError::NotAtRest => StrokeRejected::NotAtRest,
+            StrokeError::NoImpact => StrokeRejected::NoImpact,
+            StrokeError::Saturated { index } => StrokeRejected::Saturated {
+                index: index as u32,
+            },
+            StrokeError::NotForward { speed } => StrokeRejected::NotForward { speed },
+            StrokeError::Strike(error) => return LinkError::Invalid(error),
+        };
+        LinkError::Stroke(rejected)
+    }
+}
+
+/// A stroke chunk that breaks the upload. The stroke in progress is dropped: nothing
+/// half-uploaded is ever estimated. `stroke` is the chunk's stroke id, `chunk` its index.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
+#[serde(rename_all = "snake_case")]
+pub enum UploadFault {
+    /// A chunk after the first, but its stroke's first chunk was not received (or the
+    /// upload was dropped by an earlier error).
+    NotStarted {
+        /// Stroke id.
+        stroke: u16,
+        /// Chunk index.
+        chunk: u16,
+    },
+    /// A chunk ahead of the next expected one: chunks in between are missing (lost or
+    /// reordered).
+    Missing {
+        /// Stroke id.
+        stroke: u16,
+        /// The chunk expected.
+        expected: u16,
+        /// The chunk received.
+        chunk: u16,
+    },
+    /// A chunk already received.
+    Duplicate {
+        /// Stroke id.
+        stroke: u16,
+        /// Chunk index.
+        chunk: u16,
+    },
+    /// The chunk count differs from the stroke's first chunk.
+    CountChanged {
+        /// Stroke id.
+        stroke: u16,
+        /// Count in this chunk.
+        count: u16,
+        /// Count in the first chunk.
+        expected: u16,
+    },
+    /// A chunk count of 0, above [`crate::MAX_CHUNKS`], or an index not below it.
+    BadChunk {
+        /// Chunk index.
+        chunk: u16,
+        /// Chunk count.
+        count: u16,
+    },
+    /// A chunk with no samples.
+    Empty {
+        /// Stroke id.
+        stroke: u16,
+        /// Chunk index.
+        chunk: u16,
+    },
+    /// The stroke holds more than [`crate::STROKE_CAPACITY`] samples with this chunk.
+    Overflow {
+        /// Stroke id.
+        stroke: u16,
+        /// Chunk index.
+        chunk: u16,
+    },
+    /// The last chunk carries no `setup` (the sample rate is needed).
+    NoSetup {
+        /// Stroke id.
+        stroke: u16,
+    },
+    /// A sample outside the impact at the sensor's rail, or a single-sample spike.
+    Glitch {
+        /// Stroke id.
+        stroke: u16,
+        /// The chunk holding it.
+        chunk: u16,
+        /// Its index in that chunk.
+        sample: u16,
+        /// Rail or spike.
+        kind: GlitchName,
+        /// Its raw value.
+        value: i16,
+    },
+}
+
+/// What kind of glitch (`cuesight_sensors::GlitchKind`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
+#[serde(rename_all = "snake_case")]
+pub enum GlitchName {
+    /// The raw word is at the sensor's rail (−32768 or 32767).
+    Rail,
+    /// One sample far from both neighbours, which agree with each other.
+    Spike,
+}

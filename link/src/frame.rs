@@ -1,0 +1,205 @@
+//! Frames: how one message travels over a byte stream (a UART, a TCP socket).
+//!
+//! ```text
+//! on the wire:  COBS(raw) 0x00
+//! raw:          schema u32 LE | seq u16 LE | body (postcard) | crc u32 LE
+//! ```
+//!
+//! * **COBS** (consistent overhead byte stuffing, the `cobs` crate, as postcard's own
+//!   COBS flavour uses): the encoded frame has no zero byte, so `0x00` ends every frame
+//!   and a receiver that joins mid-stream, or loses bytes, is back in step at the next
+//!   zero.
+//! * **schema**: [`crate::SCHEMA_HASH`] of the sender. Fixed width and first, so that a
+//!   peer with another schema can still read it and say so instead of decoding garbage.
+//! * **seq**: the host numbers its requests; the device answers with the number of the
+//!   request it answers (`crate::session` checks the order: duplicates, gaps, reordering).
+//! * **body**: the message in postcard (varint integers, `f32` as 4 bytes LE).
+//! * **crc**: CRC-32/ISO-HDLC (the Ethernet/zlib CRC, the `crc` crate, table-free) over
+//!   schema, seq and body. Catches every burst error up to 32 bits and all odd numbers of
+//!   bit flips.
+//!
+//! Limits: a raw frame is at most [`MAX_RAW`] bytes, so an encoded one at most
+//! [`MAX_FRAME`] with its zero.
+
+use crc::{Crc, NoTable, CRC_32_ISO_HDLC};
+use serde::{Deserialize, Serialize};
+
+use crate::error::{FrameFault, LinkError};
+
+/// Longest raw frame (header, body and CRC), in bytes. A full `stroke` chunk
+/// ([`crate::MAX_SAMPLES`] samples, at most 3 bytes each) and its fields fit, and so does
+/// the largest answer (`shot`'s, a few hundred bytes).
+pub const MAX_RAW: usize = 1024;
+
+/// Longest encoded frame: COBS adds one byte per 254 and one more, and the zero ends it.
+pub const MAX_FRAME: usize = MAX_RAW + MAX_RAW / 254 + 2;
+
+/// Bytes of the header (schema and seq).
+pub const HEADER: usize = 6;
+
+/// Bytes of the CRC.
+const CRC_LEN: usize = 4;
+
+/// CRC-32/ISO-HDLC, computed bit by bit (no 1 KB table in flash; a 1 KB frame costs a
+/// few tens of thousands of instructions, next to the UART's 90 ms at 115,200 baud).
+const CRC32: Crc<u32, NoTable> = Crc::<u32, NoTable>::new(&CRC_32_ISO_HDLC);
+
+/// The header of a frame whose CRC held.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Header {
+    /// The sender's schema hash.
+    pub schema: u32,
+    /// The sequence number.
+    pub seq: u16,
+}
+
+/// Encodes `message` with `schema` and `seq` into `out` as one frame, its `0x00`
+/// included; returns the frame's length. Fails ([`LinkError::AnswerTooLarge`]) when
+/// the message does not fit [`MAX_RAW`] or `out`.
+pub fn encode<T: Serialize>(
+    schema: u32,
+    seq: u16,
+    message: &T,
+    out: &mut [u8],
+) -> Result<usize, LinkError> {
+    let mut raw = [0u8; MAX_RAW];
+    let (head, rest) = raw.split_at_mut(HEADER);
+    let [s0, s1, s2, s3] = schema.to_le_bytes();
+    let [q0, q1] = seq.to_le_bytes();
+    head.copy_from_slice(&[s0, s1, s2, s3, q0, q1]);
+    let (body_room, _) = rest.split_at_mut(MAX_RAW - HEADER - CRC_LEN);
+    let body = postcard::to_slice(message, body_room)
+        .map_err(|_| LinkError::AnswerTooLarge)?
+        .len();
+    let end = HEADER + body;
+    let crc = CRC32.checksum(raw.get(..end).unwrap_or_default());
+    let crc_slot = raw
+        .get_mut(end..end + CRC_LEN)
+        .ok_or(LinkError::AnswerTooLarge)?;
+    crc_slot.copy_from_slice(&crc.to_le_bytes());
+    let raw = raw.get(..end + CRC_LEN).unwrap_or_default();
+    let written = cobs::try_encode(raw, out).map_err(|_| LinkError::AnswerTooLarge)?;
+    let zero = out.get_mut(written).ok_or(LinkError::AnswerTooLarge)?;
+    *zero = 0;
+    Ok(written + 1)
+}
+
+/// Checks a raw (COBS-decoded) frame's length and CRC and returns its header and body.
+/// The schema is *not* compared here: the caller decides what a foreign schema means.
+pub fn open(raw: &[u8]) -> Result<(Header, &[u8]), LinkError> {
+    if raw.len() < HEADER + CRC_LEN {
+        return Err(LinkError::Frame(FrameFault::Short {
+            length: raw.len() as u16,
+        }));
+    }
+    let (content, crc) = raw.split_at(raw.len() - CRC_LEN);
+    let mut crc_bytes = [0u8; CRC_LEN];
+    crc_bytes.copy_from_slice(crc);
+    let (head, body) = content.split_at(HEADER);
+    let mut schema = [0u8; 4];
+    schema.copy_from_slice(&head[..4]);
+    let seq = u16::from_le_bytes([head[4], head[5]]);
+    if CRC32.checksum(content) != u32::from_le_bytes(crc_bytes) {
+        return Err(LinkError::Frame(FrameFault::Crc { seq_as_read: seq }));
+    }
+    let header = Header {
+        schema: u32::from_le_bytes(schema),
+        seq,
+    };
+    Ok((header, body))
+}
+
+/// Decodes a body as `T`; every byte must be used.
+pub fn decode<'a, T: Deserialize<'a>>(body: &'a [u8]) -> Result<T, LinkError> {
+    match postcard::take_from_bytes::<T>(body) {
+        Ok((message, [])) => Ok(message),
+        Ok((_, rest)) => Err(LinkError::Frame(FrameFault::TrailingBytes {
+            count: rest.len() as u16,
+        })),
+        Err(_) => Err(LinkError::Frame(FrameFault::Undecodable)),
+    }
+}
+
+/// What [`FrameReader::push`] found at a frame's end.
+#[derive(Debug, PartialEq, Eq)]
+pub enum Received<'a> {
+    /// A whole frame, COBS-decoded (header, body and CRC; see [`open`]).
+    Frame(&'a [u8]),
+    /// A frame that could not be taken: too long, or not valid COBS.
+    Fault(FrameFault),
+}
+
+/// Collects bytes into frames: feed it every byte received; at each `0x00` it hands
+/// out the frame that ended there. Never more than [`MAX_RAW`] bytes are kept: a longer
+/// frame is skipped to its end and reported as [`FrameFault::Oversized`].
+pub struct FrameReader {
+    buf: [u8; MAX_RAW],
+    len: usize,
+    /// Encoded bytes of the frame in progress (for the oversize report).
+    seen: u32,
+    state: cobs::DecoderState,
+    fault: Option<FrameFault>,
+}
+
+impl Default for FrameReader {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl FrameReader {
+    /// An empty reader, waiting for the first frame.
+    pub const fn new() -> Self {
+        Self {
+            buf: [0; MAX_RAW],
+            len: 0,
+            seen: 0,
+            state: cobs::DecoderState::Idle,
+            fault: None,
+        }
+    }
+
+    /// Takes one byte; returns what ended with it, if it was a frame's `0x00`. Empty
+    /// frames (two zeros in a row) are skipped.
+    pub fn push(&mut self, byte: u8) -> Option<Received<'_>> {
+        if byte != 0 {
+            self.seen = self.seen.saturating_add(1);
+        }
+        let fed = self.state.feed(byte);
+        match fed {
+            Ok(cobs::DecodeResult::NoData) => None,
+            Ok(cobs::DecodeResult::DataContinue(data)) => {
+                match self.buf.get_mut(self.len) {
+                    Some(slot) => {
+                        *slot = data;
+                        self.len += 1;
+                    }
+                    None => {
+                        self.fault
+                            .get_or_insert(FrameFault::Oversized { length: 0 });
+                    }
+                }
+                None
+            }
+            Ok(cobs::DecodeResult::DataComplete) => Some(self.finish()),
+            // Only a zero can be invalid: it cut a COBS block short.
+            Err(_) => {
+                self.fault.get_or_insert(FrameFault::Cobs);
+                Some(self.finish())
+            }
+        }
+    }
+
+    /// The frame that just ended, and a fresh start for the next.
+    fn finish(&mut self) -> Received<'_> {
+        let len = core::mem::take(&mut self.len);
+        let seen = core::mem::take(&mut self.seen);
+        match self.fault.take() {
+            Some(FrameFault::Oversized { .. }) => {
+                Received::Fault(FrameFault::Oversized { length: seen })
+            }
+            Some(fault) => Received::Fault(fault),
+            None => Received::Frame(self.buf.get(..len).unwrap_or_default()),
+        }
+    }
+}

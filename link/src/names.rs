@@ -1,0 +1,164 @@
+//! Names on the wire: models, contact regimes, tables, how a path ends. Each is a
+//! plain enum (a varint in postcard, a lower-case string in JSON).
+
+use cuesight::{Model, Regime};
+use serde::{Deserialize, Serialize};
+
+/// A collision model: one of the core's ([`Model`], `auto` with its default tolerance
+/// 1e-3), or the host's f64 reference solver.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
+#[serde(rename_all = "kebab-case")]
+pub enum ModelName {
+    /// [`Model::Ideal`].
+    Ideal,
+    /// [`Model::Kim`].
+    Kim,
+    /// [`Model::KimGrip`], the default.
+    #[default]
+    KimGrip,
+    /// [`Model::SeedExact`].
+    SeedExact,
+    /// [`Model::Exact`].
+    Exact,
+    /// [`Model::Auto`] with tolerance 1e-3.
+    Auto,
+    /// The f64 reference solver: host only (the device answers `unsupported`).
+    Reference,
+}
+
+impl ModelName {
+    /// Every name, as written in JSON.
+    pub const ALL: [ModelName; 7] = [
+        ModelName::Ideal,
+        ModelName::Kim,
+        ModelName::KimGrip,
+        ModelName::SeedExact,
+        ModelName::Exact,
+        ModelName::Auto,
+        ModelName::Reference,
+    ];
+
+    /// The JSON name (`kim-grip`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            ModelName::Reference => "reference",
+            ModelName::Auto => "auto",
+            other => match other.core() {
+                Some(model) => model.name(),
+                None => "reference",
+            },
+        }
+    }
+
+    /// The core's model; `None` for the reference solver.
+    pub const fn core(self) -> Option<Model> {
+        match self {
+            ModelName::Ideal => Some(Model::Ideal),
+            ModelName::Kim => Some(Model::Kim),
+            ModelName::KimGrip => Some(Model::KimGrip),
+            ModelName::SeedExact => Some(Model::SeedExact),
+            ModelName::Exact => Some(Model::Exact),
+            ModelName::Auto => Some(Model::Auto { tolerance: 1e-3 }),
+            ModelName::Reference => None,
+        }
+    }
+
+    /// The name of a core model (any `auto` tolerance is `auto`).
+    pub const fn of(model: Model) -> Self {
+        match model {
+            Model::Ideal => ModelName::Ideal,
+            Model::Kim => ModelName::Kim,
+            Model::KimGrip => ModelName::KimGrip,
+            Model::SeedExact => ModelName::SeedExact,
+            Model::Exact => ModelName::Exact,
+            Model::Auto { .. } => ModelName::Auto,
+        }
+    }
+}
+
+/// The contact regime of a collision (`physics.md` §1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
+#[serde(rename_all = "lowercase")]
+pub enum RegimeName {
+    /// No friction acted.
+    Frictionless,
+    /// The contact slid for the whole impact.
+    Sliding,
+    /// The contact gripped (rolled without slipping) before the end.
+    Gripping,
+}
+
+impl RegimeName {
+    /// The JSON name.
+    pub const fn name(self) -> &'static str {
+        match self {
+            RegimeName::Frictionless => "frictionless",
+            RegimeName::Sliding => "sliding",
+            RegimeName::Gripping => "gripping",
+        }
+    }
+}
+
+impl From<Regime> for RegimeName {
+    fn from(regime: Regime) -> Self {
+        match regime {
+            Regime::Frictionless => RegimeName::Frictionless,
+            Regime::Sliding => RegimeName::Sliding,
+            Regime::Gripping => RegimeName::Gripping,
+        }
+    }
+}
+
+/// A table preset with its ball set.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
+#[serde(rename_all = "lowercase")]
+pub enum TableName {
+    /// 9-ft pool table, pool balls.
+    #[default]
+    Pool,
+    /// Snooker table, snooker balls.
+    Snooker,
+    /// Carom table (no pockets), carom balls.
+    Carom,
+}
+
+impl TableName {
+    /// The JSON name.
+    pub const fn name(self) -> &'static str {
+        match self {
+            TableName::Pool => "pool",
+            TableName::Snooker => "snooker",
+            TableName::Carom => "carom",
+        }
+    }
+}
+
+/// How a ball's path ends (`cuesight::guidance::End`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
+#[serde(rename_all = "lowercase")]
+pub enum EndName {
+    /// It comes to rest on the table.
+    Rest,
+    /// It drops into a pocket.
+    Pocket,
+    /// It reaches a cushion (paths stop there).
+    Cushion,
+}
+
+/// Whether a `shot` played a given aim or solved for one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
+#[serde(rename_all = "lowercase")]
+pub enum ShotMode {
+    /// The aim was given.
+    Play,
+    /// The aim was solved for a pocket.
+    Solve,
+}
