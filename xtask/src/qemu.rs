@@ -7,12 +7,12 @@
 //! session, so it never interleaves with the requests and answers, and is also written
 //! to `target/xtask/firmware.log`. QEMU's exit code is the firmware's verdict.
 
-use std::io::{BufRead, Write};
+use std::io::BufRead;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use cuesight_host::firmware::{qemu_command, Ended, Firmware, FirmwareError};
-use cuesight_protocol::{Answer, Summary};
+use cuesight_link::{Request, Response};
 
 use crate::cmd::{self, Failure, Result};
 use crate::tools;
@@ -58,8 +58,11 @@ fn boot(elf: &Path) -> Result<Firmware> {
         cmd::display(&qemu_command(elf)),
         defmt_print.display(),
     );
-    Firmware::boot(elf, Some(&defmt_print))
-        .map_err(|e| Failure::new(format!("cannot boot the firmware in QEMU: {e}")))
+    let fw = Firmware::boot(elf, Some(&defmt_print))
+        .map_err(|e| Failure::new(format!("cannot boot the firmware in QEMU: {e}")))?;
+    // The unprompted `version` frame at boot.
+    let _ = fw.next_frame(Duration::from_secs(10));
+    Ok(fw)
 }
 
 /// Plays `session` (one request per line; `#` lines are headings, `##` lines comments)
@@ -95,22 +98,22 @@ pub fn run_session(elf: &Path, session: &Path, timeout: Duration) -> Result {
             continue;
         }
         println!("> {}", shorten(line));
+        let request: Request = match serde_json::from_str(line) {
+            Ok(request) => request,
+            Err(e) => {
+                println!("! not a request: {e}");
+                continue;
+            }
+        };
         let left = deadline.saturating_duration_since(Instant::now());
-        let answer = match fw.request(line.as_bytes(), left) {
-            Ok(answer) => answer,
+        let seq = answered as u16;
+        let response = match fw.request(seq, &request, left) {
+            Ok(response) => response,
             Err(error) => return Err(session_failure(fw, error, deadline)),
         };
         answered += 1;
-        match serde_json::from_str::<Answer>(&answer) {
-            Ok(parsed) => {
-                println!("< {}", Summary(&parsed));
-                shut_down = matches!(parsed, Answer::Shutdown(_));
-            }
-            Err(e) => {
-                println!("< {answer}");
-                return Err(Failure::new(format!("unparseable answer ({e}): {answer}")));
-            }
-        }
+        println!("< {response:?}");
+        shut_down = matches!(response, Response::Shutdown(_));
         if shut_down {
             break;
         }
@@ -118,8 +121,12 @@ pub fn run_session(elf: &Path, session: &Path, timeout: Duration) -> Result {
     if !shut_down {
         println!("> {{\"shutdown\":{{}}}}   (end of the session file)");
         let left = deadline.saturating_duration_since(Instant::now());
-        match fw.request(b"{\"shutdown\":{}}", left) {
-            Ok(answer) => println!("< {answer}"),
+        match fw.request(
+            answered as u16,
+            &Request::Shutdown(Default::default()),
+            left,
+        ) {
+            Ok(answer) => println!("< {answer:?}"),
             Err(error) => return Err(session_failure(fw, error, deadline)),
         }
     }
@@ -141,41 +148,37 @@ fn shorten(line: &str) -> String {
 /// (Ctrl-D) sends `shutdown`; so does typing it. No timeout.
 pub fn run_interactive(elf: &Path) -> Result {
     let mut fw = boot(elf)?;
-    let mut port = fw
-        .take_serial_in()
-        .ok_or_else(|| Failure::new("no serial input"))?;
     println!(
         "xtask: type one request per line, e.g.\n  \
          {{\"collide\":{{\"speed\":2,\"cut\":30,\"spin\":[0,40,0]}}}}\n  \
          {{\"params\":{{\"mu\":0.06}}}}   {{\"version\":{{}}}}   {{\"shutdown\":{{}}}}\n\
          (docs/protocol.md has them all); Ctrl-D ends the session, the log follows."
     );
-    std::thread::spawn(move || {
-        let stdin = std::io::stdin();
-        for line in stdin.lock().lines().map_while(std::io::Result::ok) {
-            if port.write_all(line.as_bytes()).is_err() || port.write_all(b"\n").is_err() {
-                return;
-            }
-        }
-        let _ = port.write_all(b"{\"shutdown\":{}}\n");
-    });
+    let stdin = std::io::stdin();
+    let mut seq = 0u16;
+    let mut lines = stdin.lock().lines().map_while(std::io::Result::ok);
     loop {
-        match fw.answer(Duration::from_secs(24 * 3600)) {
-            Ok(answer) => {
-                println!("< {answer}");
-                match serde_json::from_str::<Answer>(&answer) {
-                    Ok(parsed) => {
-                        println!("  {}", Summary(&parsed));
-                        if matches!(parsed, Answer::Shutdown(_)) {
-                            break;
-                        }
-                    }
-                    Err(e) => println!("  (unparseable: {e})"),
+        let request = match lines.next() {
+            Some(line) => match serde_json::from_str::<Request>(&line) {
+                Ok(request) => request,
+                Err(e) => {
+                    println!("! not a request: {e}");
+                    continue;
+                }
+            },
+            None => Request::Shutdown(Default::default()),
+        };
+        match fw.request(seq, &request, Duration::from_secs(60)) {
+            Ok(response) => {
+                println!("< {response:?}");
+                if matches!(response, Response::Shutdown(_)) {
+                    break;
                 }
             }
             Err(FirmwareError::Closed) => break,
             Err(e) => return Err(Failure::new(e.to_string())),
         }
+        seq = seq.wrapping_add(1);
     }
     let ended = fw.wait(Duration::from_secs(10));
     print_log(&ended);
