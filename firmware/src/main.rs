@@ -1,6 +1,6 @@
-//! cuesight on a Cortex-M4F: answers the newline-delimited JSON protocol of
-//! `cuesight-protocol` on the board's serial port (`collide`, `params`, `stroke`,
-//! `shot` with the `shot` feature, a default one, `version`, `shutdown`; see
+//! cuesight on a Cortex-M4F: serves the device link of `cuesight-link` on the board's
+//! serial port (postcard messages in COBS frames with a CRC: `version`, `collide`,
+//! `params`, `stroke`, `shot` with the `shot` feature, a default one, `shutdown`; see
 //! `docs/protocol.md`), logging with defmt.
 //!
 //! At boot it runs every model on a few built-in shots as a self-test (exit with
@@ -17,7 +17,8 @@ mod exit;
 mod serve;
 mod shots;
 
-use cuesight_protocol::{AnswerLine, Identity, LineReader, Session, MAX_LINE, PROTOCOL_VERSION};
+use cuesight_link::frame::{FrameReader, MAX_FRAME};
+use cuesight_link::{Identity, Session, SCHEMA_HASH};
 use static_cell::{ConstStaticCell, StaticCell};
 
 /// Firmware name and version, as `version` reports them.
@@ -27,10 +28,12 @@ const FIRMWARE: &str = concat!(env!("CARGO_PKG_NAME"), " ", env!("CARGO_PKG_VERS
 /// it never passes through the stack. (A `ConstStaticCell` would put it in `.data`, and
 /// its 10 KB initial image in flash.)
 static SESSION: StaticCell<Session> = StaticCell::new();
-/// The request line buffer ([`MAX_LINE`] bytes, all zero: `.bss`).
-static LINES: ConstStaticCell<LineReader<MAX_LINE>> = ConstStaticCell::new(LineReader::new());
-/// The answer line buffer (`.bss`).
-static ANSWER: ConstStaticCell<AnswerLine> = ConstStaticCell::new(AnswerLine::new());
+/// The frame reader (a raw frame's [`cuesight_link::frame::MAX_RAW`] bytes), built in
+/// place like the session: its initial value is not all zero, so a `ConstStaticCell`
+/// would put it in `.data`, and a kilobyte of its image in flash.
+static FRAMES: StaticCell<FrameReader> = StaticCell::new();
+/// The answer frame buffer (`.bss`).
+static ANSWER: ConstStaticCell<[u8; MAX_FRAME]> = ConstStaticCell::new([0; MAX_FRAME]);
 
 #[cortex_m_rt::entry]
 fn main() -> ! {
@@ -50,17 +53,20 @@ fn main() -> ! {
             board: board::NAME,
         })
     });
-    let (Some(session), Some(lines), Some(answer)) = (session, LINES.try_take(), ANSWER.try_take())
-    else {
+    let (Some(session), Some(frames), Some(answer)) = (
+        session,
+        FRAMES.try_init_with(FrameReader::new),
+        ANSWER.try_take(),
+    ) else {
         defmt::error!("the session buffers were already taken");
         board::exit(false)
     };
     defmt::info!(
-        "serving protocol {=u32} on the serial port (lines up to {=usize} bytes)",
-        PROTOCOL_VERSION,
-        MAX_LINE
+        "serving link schema {=u32:#010x} on the serial port (frames up to {=usize} bytes)",
+        SCHEMA_HASH,
+        MAX_FRAME
     );
-    match serve::serve(&mut board.serial, session, lines, answer) {
+    match serve::serve(&mut board.serial, session, frames, answer) {
         Ok(()) => {
             defmt::info!(
                 "shutdown: {=u32} requests answered, {=u32} with an error",
@@ -69,11 +75,12 @@ fn main() -> ! {
             );
             let (peak, size) = board::peak_stack();
             defmt::info!(
-                "peak stack {=u32} of {=u32} bytes (statics: session {=usize}, line buffer {=usize})",
+                "peak stack {=u32} of {=u32} bytes (statics: session {=usize}, frame reader {=usize}, answer {=usize})",
                 peak,
                 size,
                 core::mem::size_of::<Session>(),
-                MAX_LINE
+                core::mem::size_of::<FrameReader>(),
+                MAX_FRAME
             );
             board::exit(true)
         }

@@ -1,38 +1,39 @@
-//! The serial loop: bytes in, lines through the protocol's [`Session`], answers out.
-//! Generic over `embedded_io`, so any board's serial port serves; all protocol logic is
-//! in `cuesight-protocol`, tested on the host.
+//! The serial loop: bytes in, frames through the link's [`Session`], answer frames out.
+//! Generic over `embedded_io`, so any board's serial port serves; all link logic is in
+//! `cuesight-link`, tested on the host.
 
-use cuesight_protocol::{AnswerLine, Control, LineReader, Session, MAX_LINE};
+use cuesight_link::frame::FrameReader;
+use cuesight_link::{Control, Session};
 use embedded_io::{Read, Write};
 
-/// Serves requests until a `shutdown` request has been answered (`Ok`) or the serial
-/// port fails (`Err`). Each line gets exactly one answer line, in order; a line longer
-/// than [`MAX_LINE`] gets a `line_too_long` error and the next line is read normally.
+/// Sends the unprompted `version` frame (the schema hash, for a host that is listening
+/// from boot), then serves frames until a `shutdown` request has been answered (`Ok`)
+/// or the serial port fails (`Err`). Every frame (a `0x00` ends it) gets exactly one
+/// answer frame, in order; a frame that cannot be read gets a typed error answer.
 ///
-/// The buffers come from the caller (statics in `main.rs`): the line buffer alone is
-/// [`MAX_LINE`] bytes, too much for the stack budget.
+/// The buffers come from the caller (statics in `main.rs`): a frame reader and an
+/// answer buffer are a kilobyte each, too much for the stack budget.
 pub fn serve<S: Read + Write>(
     serial: &mut S,
     session: &mut Session,
-    lines: &mut LineReader<MAX_LINE>,
-    answer: &mut AnswerLine,
+    frames: &mut FrameReader,
+    answer: &mut [u8],
 ) -> Result<(), S::Error> {
+    let hello = session.hello(answer);
+    serial.write_all(answer.get(..hello).unwrap_or_default())?;
     let mut chunk = [0u8; 64];
     loop {
         let received = serial.read(&mut chunk)?;
         for &byte in chunk.get(..received).unwrap_or_default() {
-            let Some(event) = lines.push(byte) else {
+            let Some(frame) = frames.push(byte) else {
                 continue;
             };
-            let Some(served) = session.serve(event, answer) else {
-                continue; // blank line
-            };
-            match (served.request, served.error) {
-                (Some(request), _) => defmt::debug!("{=str}: answered", request),
-                (None, Some(kind)) => defmt::debug!("error answer: {}", kind),
-                (None, None) => {}
+            let served = session.serve(frame, answer);
+            match served.outcome {
+                Ok(request) => defmt::debug!("{=str}: answered", request),
+                Err(error) => defmt::debug!("error answer: {}", error),
             }
-            serial.write_all(answer)?;
+            serial.write_all(answer.get(..served.len).unwrap_or_default())?;
             if served.control == Control::Shutdown {
                 serial.flush()?;
                 return Ok(());

@@ -62,24 +62,25 @@ pub fn encode<T: Serialize>(
     message: &T,
     out: &mut [u8],
 ) -> Result<usize, LinkError> {
+    let too_large = LinkError::AnswerTooLarge;
     let mut raw = [0u8; MAX_RAW];
-    let (head, rest) = raw.split_at_mut(HEADER);
+    let (head, rest) = raw.split_first_chunk_mut::<HEADER>().ok_or(too_large)?;
     let [s0, s1, s2, s3] = schema.to_le_bytes();
     let [q0, q1] = seq.to_le_bytes();
-    head.copy_from_slice(&[s0, s1, s2, s3, q0, q1]);
-    let (body_room, _) = rest.split_at_mut(MAX_RAW - HEADER - CRC_LEN);
+    *head = [s0, s1, s2, s3, q0, q1];
+    let body_room = rest
+        .get_mut(..MAX_RAW - HEADER - CRC_LEN)
+        .ok_or(too_large)?;
     let body = postcard::to_slice(message, body_room)
-        .map_err(|_| LinkError::AnswerTooLarge)?
+        .map_err(|_| too_large)?
         .len();
     let end = HEADER + body;
     let crc = CRC32.checksum(raw.get(..end).unwrap_or_default());
-    let crc_slot = raw
-        .get_mut(end..end + CRC_LEN)
-        .ok_or(LinkError::AnswerTooLarge)?;
+    let crc_slot = raw.get_mut(end..end + CRC_LEN).ok_or(too_large)?;
     crc_slot.copy_from_slice(&crc.to_le_bytes());
     let raw = raw.get(..end + CRC_LEN).unwrap_or_default();
-    let written = cobs::try_encode(raw, out).map_err(|_| LinkError::AnswerTooLarge)?;
-    let zero = out.get_mut(written).ok_or(LinkError::AnswerTooLarge)?;
+    let written = cobs::try_encode(raw, out).map_err(|_| too_large)?;
+    let zero = out.get_mut(written).ok_or(too_large)?;
     *zero = 0;
     Ok(written + 1)
 }
@@ -87,23 +88,18 @@ pub fn encode<T: Serialize>(
 /// Checks a raw (COBS-decoded) frame's length and CRC and returns its header and body.
 /// The schema is *not* compared here: the caller decides what a foreign schema means.
 pub fn open(raw: &[u8]) -> Result<(Header, &[u8]), LinkError> {
-    if raw.len() < HEADER + CRC_LEN {
-        return Err(LinkError::Frame(FrameFault::Short {
-            length: raw.len() as u16,
-        }));
-    }
-    let (content, crc) = raw.split_at(raw.len() - CRC_LEN);
-    let mut crc_bytes = [0u8; CRC_LEN];
-    crc_bytes.copy_from_slice(crc);
-    let (head, body) = content.split_at(HEADER);
-    let mut schema = [0u8; 4];
-    schema.copy_from_slice(&head[..4]);
-    let seq = u16::from_le_bytes([head[4], head[5]]);
-    if CRC32.checksum(content) != u32::from_le_bytes(crc_bytes) {
+    let short = LinkError::Frame(FrameFault::Short {
+        length: raw.len() as u16,
+    });
+    let (content, crc) = raw.split_last_chunk::<CRC_LEN>().ok_or(short)?;
+    let (head, body) = content.split_first_chunk::<HEADER>().ok_or(short)?;
+    let [s0, s1, s2, s3, q0, q1] = *head;
+    let seq = u16::from_le_bytes([q0, q1]);
+    if CRC32.checksum(content) != u32::from_le_bytes(*crc) {
         return Err(LinkError::Frame(FrameFault::Crc { seq_as_read: seq }));
     }
     let header = Header {
-        schema: u32::from_le_bytes(schema),
+        schema: u32::from_le_bytes([s0, s1, s2, s3]),
         seq,
     };
     Ok((header, body))
