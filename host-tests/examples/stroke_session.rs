@@ -1,28 +1,51 @@
-//! Prints the `stroke` request lines of a seeded synthetic stroke (the demo session's):
+//! Prints the `stroke` request lines of a seeded synthetic stroke (the demo session's),
+//! in the link's JSON (`cuesight device`, `firmware/demo/session.jsonl`):
 //!
-//!     cargo run -q -p cuesight-host --example stroke_session -- [SEED RATE_HZ SPEED_M_S]
+//!     cargo run -q -p cuesight-host --example stroke_session -- [SEED RATE_HZ SPEED_M_S SAMPLES [ID]]
 //!
-//! The window is sent in chunks of 1,000 samples; the last chunk also sets a tip offset
-//! 2R/5 above centre (natural roll).
+//! Default `7 3333 2.5 5000 1`: 5,000 samples at 3,333 Hz, the whole stroke window
+//! (`cuesight_link::STROKE_CAPACITY`, 1.5 s: rest, backswing, forward stroke, impact
+//! and follow-through), sent as stroke 1 in 20 chunks of 250 samples. The last chunk
+//! also sets a tip offset 2R/5 above centre (natural roll).
 
-use cuesight_host::strokes::{stroke_requests, synthetic_stroke};
-use cuesight_protocol::Request;
+use cuesight_host::strokes::{stroke_chunks, synthetic_stroke_of};
+use cuesight_link::Request;
+
+/// `json` without its `null` members (absent fields read as `None` all the same).
+fn without_nulls(json: &str) -> String {
+    let mut out = json.to_owned();
+    for key in [
+        "setup",
+        "scale",
+        "tip_offset",
+        "cue_mass",
+        "tip_restitution",
+    ] {
+        out = out.replace(&format!(",\"{key}\":null"), "");
+    }
+    out
+}
 
 fn main() {
-    let args: Vec<f64> = std::env::args()
-        .skip(1)
-        .map(|a| a.parse().expect("numbers: SEED RATE_HZ SPEED_M_S"))
-        .collect();
-    let (seed, rate, speed) = match args[..] {
-        [seed, rate, speed] => (seed as u64, rate, speed),
-        _ => (7, 1000.0, 2.5),
+    let args: Result<Vec<f64>, _> = std::env::args().skip(1).map(|a| a.parse()).collect();
+    let (seed, rate, speed, samples, id) = match args.as_deref() {
+        Ok([]) => (7, 3333.0, 2.5, 5000, 1),
+        Ok([seed, rate, speed, samples]) => (*seed as u64, *rate, *speed, *samples as usize, 1),
+        Ok([seed, rate, speed, samples, id]) => {
+            (*seed as u64, *rate, *speed, *samples as usize, *id as u16)
+        }
+        _ => {
+            eprintln!("usage: stroke_session [SEED RATE_HZ SPEED_M_S SAMPLES [ID]]");
+            std::process::exit(2);
+        }
     };
-    let stroke = synthetic_stroke(seed, rate, speed);
-    let mut requests = stroke_requests(&stroke, 1000);
-    if let Some(Request::Stroke(last)) = requests.last_mut() {
-        last.tip_offset = Some([0.0, 0.4 * cuesight::Params::POOL.radius()]);
+    let stroke = synthetic_stroke_of(seed, rate, speed, Some(samples));
+    let mut chunks = stroke_chunks(&stroke, id, 250);
+    if let Some(setup) = chunks.last_mut().and_then(|last| last.setup.as_mut()) {
+        setup.tip_offset = Some([0.0, 0.4 * cuesight::Params::POOL.radius()]);
     }
-    for request in &requests {
-        println!("{}", serde_json::to_string(request).expect("serializes"));
+    for chunk in chunks {
+        let json = serde_json::to_string(&Request::Stroke(chunk)).expect("serializes");
+        println!("{}", without_nulls(&json));
     }
 }

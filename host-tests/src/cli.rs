@@ -9,7 +9,8 @@
 use core::fmt;
 
 use cuesight::{Impact, Outcome, Params};
-use cuesight_protocol::{Collide, Defaults, ModelName};
+use cuesight_link::response::InputEcho;
+use cuesight_link::{Collide, Defaults, LinkError, ModelName};
 
 use crate::report::Report;
 
@@ -19,14 +20,17 @@ pub const EXIT_INVALID: u8 = 1;
 pub const EXIT_USAGE: u8 = 2;
 
 /// Parse a `--model` value: a core model (`ideal`, `kim`, `kim-grip`, ...) or
-/// `reference`, by the protocol's [`ModelName`].
+/// `reference`, by the link's [`ModelName`] (the names a request's `model` takes).
 pub fn parse_model(name: &str) -> Result<ModelName, String> {
-    ModelName::from_name(name).ok_or_else(|| {
-        format!(
-            "unknown model, expected one of {}",
-            ModelName::names().collect::<Vec<_>>().join(", ")
-        )
-    })
+    ModelName::ALL
+        .into_iter()
+        .find(|model| model.name() == name)
+        .ok_or_else(|| {
+            format!(
+                "unknown model, expected one of {}",
+                ModelName::ALL.map(ModelName::name).join(", ")
+            )
+        })
 }
 
 /// Parse a `--spin` value `WX,WY,WZ` (rad/s, collision frame). Only the syntax is
@@ -55,12 +59,17 @@ pub enum CliError {
     Core(cuesight::Error),
     /// The reference solver panicked or returned non-finite numbers.
     Reference(String),
+    /// A request the options cannot express (`spin` with `roll`; clap refuses it first).
+    Usage(String),
 }
 
 impl CliError {
     /// Process exit code for this error.
     pub const fn exit_code(&self) -> u8 {
-        EXIT_INVALID
+        match self {
+            CliError::Usage(_) => EXIT_USAGE,
+            _ => EXIT_INVALID,
+        }
     }
 }
 
@@ -69,6 +78,7 @@ impl fmt::Display for CliError {
         match self {
             CliError::Core(error) => fmt::Display::fmt(error, f),
             CliError::Reference(message) => write!(f, "model reference: {message}"),
+            CliError::Usage(message) => f.write_str(message),
         }
     }
 }
@@ -81,7 +91,16 @@ impl From<cuesight::Error> for CliError {
     }
 }
 
-/// Validate the request through the core's constructors (the protocol's
+impl From<LinkError> for CliError {
+    fn from(error: LinkError) -> Self {
+        match error {
+            LinkError::Invalid(error) => CliError::Core(error),
+            other => CliError::Usage(crate::device::text::Sentence(&other).to_string()),
+        }
+    }
+}
+
+/// Validate the request through the core's constructors (the link's
 /// [`Collide::prepare`], as the firmware does, from the pool defaults and `kim-grip`),
 /// run the chosen solver and report the result.
 pub fn collide(request: &Collide) -> Result<Report, CliError> {
@@ -90,7 +109,14 @@ pub fn collide(request: &Collide) -> Result<Report, CliError> {
         Some(model) => cuesight::collide(&prepared.params, &prepared.impact, model)?,
         None => reference_collide(&prepared.params, &prepared.impact)?,
     };
-    Ok(Report::new(prepared.model, prepared.input, &outcome))
+    let input = InputEcho::new(
+        request.speed,
+        request.cut,
+        request.roll,
+        &prepared.params,
+        &prepared.impact,
+    );
+    Ok(Report::new(prepared.model, input, &outcome))
 }
 
 /// Run the reference solver, turning a panic into an error instead of a trace.
@@ -143,7 +169,6 @@ pub fn usage_error_message(error: &clap::Error) -> String {
 mod tests {
     use super::*;
     use cuesight::Field;
-    use cuesight_protocol::{Overrides, Spin};
 
     #[test]
     fn spin_parses_negative_and_spaced_components() {
@@ -161,8 +186,8 @@ mod tests {
 
     #[test]
     fn model_names_round_trip() {
-        for name in ModelName::names() {
-            assert_eq!(parse_model(name).unwrap().name(), name);
+        for model in ModelName::ALL {
+            assert_eq!(parse_model(model.name()), Ok(model));
         }
         assert_eq!(parse_model("reference"), Ok(ModelName::Reference));
         assert!(parse_model("kimgrip").unwrap_err().contains("kim-grip"));
@@ -171,51 +196,47 @@ mod tests {
     #[test]
     fn invalid_values_name_their_field() {
         let base = Collide::new(1.0, 0.0);
-        let with = |overrides: Overrides| Collide {
-            with: overrides,
-            ..base
-        };
         let cases = [
             (
-                with(Overrides {
+                Collide {
                     mu: Some(-0.1),
-                    ..Overrides::default()
-                }),
+                    ..base
+                },
                 Field::Friction,
             ),
             (
-                with(Overrides {
+                Collide {
                     mu_b: Some(2.0),
-                    ..Overrides::default()
-                }),
+                    ..base
+                },
                 Field::FrictionAmplitude,
             ),
             (
-                with(Overrides {
+                Collide {
                     restitution: Some(1.5),
-                    ..Overrides::default()
-                }),
+                    ..base
+                },
                 Field::Restitution,
             ),
             (
-                with(Overrides {
+                Collide {
                     mu_s: Some(f32::NAN),
-                    ..Overrides::default()
-                }),
+                    ..base
+                },
                 Field::TableFriction,
             ),
             (
-                with(Overrides {
+                Collide {
                     radius: Some(0.0),
-                    ..Overrides::default()
-                }),
+                    ..base
+                },
                 Field::Radius,
             ),
             (
-                with(Overrides {
+                Collide {
                     mass: Some(1e6),
-                    ..Overrides::default()
-                }),
+                    ..base
+                },
                 Field::Mass,
             ),
             (Collide { speed: 0.0, ..base }, Field::Speed),
@@ -223,14 +244,14 @@ mod tests {
             (
                 Collide {
                     cut: -90.0,
-                    spin: Spin::Roll,
+                    roll: true,
                     ..base
                 },
                 Field::CutAngle,
             ),
             (
                 Collide {
-                    spin: Spin::Given([0.0, f32::INFINITY, 0.0]),
+                    spin: Some([0.0, f32::INFINITY, 0.0]),
                     ..base
                 },
                 Field::SpinY,
@@ -244,5 +265,11 @@ mod tests {
             assert_eq!(core_error.field(), Some(field), "{request:?}");
             assert!(error.to_string().starts_with(field.name()), "{error}");
         }
+        let both = Collide {
+            spin: Some([0.0; 3]),
+            roll: true,
+            ..base
+        };
+        assert_eq!(collide(&both).unwrap_err().exit_code(), EXIT_USAGE);
     }
 }

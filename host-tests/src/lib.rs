@@ -2,6 +2,7 @@
 //! shared by the CLI and the test suites.
 pub mod cli;
 pub mod compare;
+pub mod device;
 pub mod firmware;
 pub mod grid;
 pub mod reference;

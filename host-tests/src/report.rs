@@ -1,13 +1,15 @@
-//! Serializable report of one collision: the protocol's [`CollideAnswer`], which is
-//! both what `cuesight collide --json` prints and the body of the firmware's answer to
-//! a `collide` request (one schema, one struct: serde_json here, serde-json-core on the
-//! device, the same text for the same numbers).
+//! Serializable report of one collision: the link's [`Report`]
+//! (`cuesight_link::CollideAnswer`), which is both what `cuesight collide --json` prints
+//! (serde_json) and the body of the device's answer to a `collide` request (postcard):
+//! one schema, one struct.
 //!
 //! All quantities are SI (m, s, kg, rad/s, N·s) in the collision frame of
 //! physics-notes §1 (`x` from the cue ball to the object ball, `z` up, `y = z × x`);
-//! angles are in degrees. The human summary is [`CollideAnswer`]'s `Display`.
+//! angles are in degrees. The human summary is [`Text`].
 
-pub use cuesight_protocol::answer::{
+use core::fmt;
+
+pub use cuesight_link::response::{
     BallAnswer as BallReport, CollideAnswer as Report, ImpulsesAnswer as ImpulsesReport,
     InputEcho as InputReport,
 };
@@ -19,18 +21,95 @@ pub fn to_json(report: &Report) -> String {
     serde_json::to_string(report).unwrap_or_else(|e| format!("{{\"error\":\"{e}\"}}"))
 }
 
+/// `(x, y, z)` with fixed-width components, for aligned columns.
+struct Vector([f32; 3]);
+
+impl fmt::Display for Vector {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let [x, y, z] = self.0;
+        write!(f, "({x:9.4}, {y:9.4}, {z:9.4})")
+    }
+}
+
+/// `mu 0.05`, or `mu 0.00995 + 0.108 exp(-1.088 v)` for a speed-dependent law.
+pub struct Friction {
+    /// `a`, the constant μ or the high-speed limit.
+    pub mu: f32,
+    /// `b`.
+    pub mu_b: f32,
+    /// `c` (s/m).
+    pub mu_c: f32,
+}
+
+impl fmt::Display for Friction {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.mu_b == 0.0 && self.mu_c == 0.0 {
+            write!(f, "mu {}", self.mu)
+        } else {
+            write!(f, "mu {} + {} exp(-{} v)", self.mu, self.mu_b, self.mu_c)
+        }
+    }
+}
+
+/// The human summary of a report, a few lines, no trailing newline (`cuesight collide`).
+pub struct Text<'a>(pub &'a Report);
+
+impl fmt::Display for Text<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let report = self.0;
+        let i = &report.input;
+        let spin_kind = if i.roll { " (natural roll)" } else { "" };
+        writeln!(
+            f,
+            "model {}, regime {}",
+            report.model.name(),
+            report.regime.name()
+        )?;
+        writeln!(
+            f,
+            "input:  speed {} m/s, cut {} deg, w {} rad/s{spin_kind}",
+            i.speed,
+            i.cut_deg,
+            Vector(i.spin)
+        )?;
+        let friction = Friction {
+            mu: i.mu,
+            mu_b: i.mu_b,
+            mu_c: i.mu_c,
+        };
+        writeln!(
+            f,
+            "        {friction}, e* {}, mu_s {}, R {} m, M {} kg",
+            i.restitution, i.mu_s, i.radius, i.mass
+        )?;
+        for (name, ball) in [("cue:   ", &report.cue), ("object:", &report.object)] {
+            writeln!(
+                f,
+                "{name} v {} m/s   w {} rad/s",
+                Vector(ball.v),
+                Vector(ball.w)
+            )?;
+        }
+        write!(
+            f,
+            "throw {:.3} deg, cue deflection {:.3} deg, separation {:.3} deg",
+            report.throw_deg, report.cue_deflection_deg, report.separation_deg
+        )
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use cuesight::{collide, Impact, Model, Params};
-    use cuesight_protocol::ModelName;
+    use cuesight_link::ModelName;
 
     fn stun_cut() -> Report {
         let params = Params::POOL;
         let impact = Impact::from_cut_degrees(2.0, 30.0, [0.0; 3]).unwrap();
         let outcome = collide(&params, &impact, Model::KimGrip).unwrap();
         Report::new(
-            ModelName::from(Model::KimGrip),
+            ModelName::of(Model::KimGrip),
             InputReport::new(2.0, 30.0, false, &params, &impact),
             &outcome,
         )
@@ -46,11 +125,15 @@ mod tests {
     }
 
     #[test]
-    fn json_is_the_firmware_text() {
+    fn frame_round_trips() {
+        use cuesight_link::frame::{self, MAX_FRAME};
         let report = stun_cut();
-        let mut buf = [0u8; cuesight_protocol::MAX_ANSWER];
-        let n = serde_json_core::to_slice(&report, &mut buf).unwrap();
-        assert_eq!(std::str::from_utf8(&buf[..n]).unwrap(), to_json(&report));
+        let mut wire = [0u8; MAX_FRAME];
+        let len = frame::encode(cuesight_link::SCHEMA_HASH, 0, &report, &mut wire).unwrap();
+        let mut raw = [0u8; MAX_FRAME];
+        let n = cobs::decode(&wire[..len - 1], &mut raw).unwrap();
+        let (_, body) = frame::open(&raw[..n]).unwrap();
+        assert_eq!(frame::decode::<Report>(body), Ok(report));
     }
 
     #[test]
@@ -69,7 +152,7 @@ mod tests {
 
     #[test]
     fn summary_names_model_and_angles() {
-        let text = stun_cut().to_string();
+        let text = Text(&stun_cut()).to_string();
         assert!(text.starts_with("model kim-grip, regime "));
         assert!(text.contains("throw "));
         assert!(text.contains("cue deflection "));

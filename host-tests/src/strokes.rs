@@ -9,6 +9,7 @@
 //! are rounded at the LSM6DSOX ±16 g scale. (The sensors crate's own tests use a richer
 //! model with bias drift and tilt; this one only has to be a plausible input.)
 
+use cuesight_link::{Request, StrokeChunk, StrokeSetup, MAX_SAMPLES};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -26,20 +27,34 @@ pub struct SyntheticStroke {
     pub cue_speed: f64,
 }
 
-/// A stroke reaching `cue_speed` (m/s) at the impact, sampled at `rate_hz`.
+/// A stroke reaching `cue_speed` (m/s) at the impact, sampled at `rate_hz`: 1.33 s of
+/// motion (0.4 s of rest first).
 pub fn synthetic_stroke(seed: u64, rate_hz: f64, cue_speed: f64) -> SyntheticStroke {
+    synthetic_stroke_of(seed, rate_hz, cue_speed, None)
+}
+
+/// [`synthetic_stroke`] with exactly `count` samples when given: the follow-through is
+/// cut or lengthened (the cue stops 0.2 s after the impact and stays still), so the
+/// window can be filled to its last sample.
+pub fn synthetic_stroke_of(
+    seed: u64,
+    rate_hz: f64,
+    cue_speed: f64,
+    count: Option<usize>,
+) -> SyntheticStroke {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let scale = f64::from(cuesight_sensors::ACCEL_MPS2_PER_LSB);
     let (rest, back, pause, forward) = (0.4, 0.45, 0.12, 0.3);
     let backswing = 0.12; // m
-    let (impact, follow) = (0.0015, 0.06);
+    let (impact, follow, stop) = (0.0015, 0.06, 0.2);
     let total = rest + back + pause + forward + impact + follow;
     let bias = G * 5f64.to_radians().sin() + 0.02 * G;
-    let count = (total * rate_hz).round() as usize;
+    let count = count.unwrap_or((total * rate_hz).round() as usize);
     let pi = std::f64::consts::PI;
     let samples = (0..count)
         .map(|i| {
             let t = i as f64 / rate_hz;
+            let hit = rest + back + pause + forward;
             let a = if t < rest {
                 0.0
             } else if t < rest + back {
@@ -47,13 +62,15 @@ pub fn synthetic_stroke(seed: u64, rate_hz: f64, cue_speed: f64) -> SyntheticStr
                 -backswing * pi * pi / (2.0 * back * back) * (pi * u / back).cos()
             } else if t < rest + back + pause {
                 0.0
-            } else if t < rest + back + pause + forward {
+            } else if t < hit {
                 let u = t - rest - back - pause;
                 cue_speed * pi / (2.0 * forward) * (pi * u / forward).sin()
-            } else if t < rest + back + pause + forward + impact {
+            } else if t < hit + impact {
                 -50.0 * G
+            } else if t < hit + impact + stop {
+                -cue_speed / stop
             } else {
-                -cue_speed / 0.2
+                0.0
             };
             // Box–Muller: 8 mg RMS.
             let (u1, u2): (f64, f64) = (rng.random_range(1e-12..1.0), rng.random());
@@ -70,26 +87,39 @@ pub fn synthetic_stroke(seed: u64, rate_hz: f64, cue_speed: f64) -> SyntheticStr
     }
 }
 
-/// The `stroke` requests that send `stroke` in chunks of at most `chunk` samples; the
-/// last carries the rate (and defaults for the rest).
-pub fn stroke_requests(stroke: &SyntheticStroke, chunk: usize) -> Vec<cuesight_protocol::Request> {
-    use cuesight_protocol::{Request, Stroke};
-    let chunks: Vec<&[i16]> = stroke.samples.chunks(chunk.max(1)).collect();
-    chunks
+/// The chunks that upload `stroke` as stroke `id`, at most `chunk` samples each (and at
+/// most [`MAX_SAMPLES`]); the last carries the setup (the rate, defaults for the rest).
+pub fn stroke_chunks(stroke: &SyntheticStroke, id: u16, chunk: usize) -> Vec<StrokeChunk> {
+    let parts: Vec<&[i16]> = stroke.samples.chunks(chunk.clamp(1, MAX_SAMPLES)).collect();
+    let count = parts.len() as u16;
+    parts
         .iter()
         .enumerate()
         .map(|(i, part)| {
-            let samples = part
-                .iter()
-                .copied()
-                .take(cuesight_protocol::MAX_SAMPLES)
-                .collect();
-            Request::Stroke(if i + 1 < chunks.len() {
-                Stroke::chunk(samples)
-            } else {
-                Stroke::last(samples, stroke.rate_hz)
-            })
+            let mut samples = heapless::Vec::new();
+            for &word in part.iter() {
+                // At most MAX_SAMPLES by the clamp above.
+                let _ = samples.push(word);
+            }
+            StrokeChunk {
+                stroke: id,
+                index: i as u16,
+                count,
+                samples,
+                setup: (i + 1 == parts.len()).then_some(StrokeSetup {
+                    rate_hz: stroke.rate_hz,
+                    ..StrokeSetup::default()
+                }),
+            }
         })
+        .collect()
+}
+
+/// [`stroke_chunks`] of stroke 1, as `stroke` requests.
+pub fn stroke_requests(stroke: &SyntheticStroke, chunk: usize) -> Vec<Request> {
+    stroke_chunks(stroke, 1, chunk)
+        .into_iter()
+        .map(Request::Stroke)
         .collect()
 }
 
@@ -108,5 +138,26 @@ mod tests {
             let error = (f64::from(estimate.cue_speed) - speed).abs() / speed;
             assert!(error < 0.03, "{rate} Hz, {speed} m/s: {estimate:?}");
         }
+    }
+
+    #[test]
+    fn a_full_window_is_twenty_chunks_and_estimates() {
+        let stroke = synthetic_stroke_of(7, 3333.0, 2.5, Some(cuesight_link::STROKE_CAPACITY));
+        assert_eq!(stroke.samples.len(), 5_000);
+        let chunks = stroke_chunks(&stroke, 9, 250);
+        assert_eq!(chunks.len(), 20);
+        for (i, chunk) in chunks.iter().enumerate() {
+            assert_eq!((chunk.stroke, chunk.index, chunk.count), (9, i as u16, 20));
+            assert_eq!(chunk.samples.len(), 250);
+            assert_eq!(chunk.setup.is_some(), i == 19);
+        }
+        let scale = cuesight_sensors::ACCEL_MPS2_PER_LSB;
+        let mut config = cuesight_sensors::StrokeConfig::new(stroke.rate_hz);
+        config.full_scale = 32768.0 * scale;
+        let estimate = cuesight_sensors::estimate_raw(&stroke.samples, scale, &config).unwrap();
+        assert!(
+            (f64::from(estimate.cue_speed) - 2.5).abs() < 0.075,
+            "{estimate:?}"
+        );
     }
 }

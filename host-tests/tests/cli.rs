@@ -293,3 +293,89 @@ fn reference_model_runs_and_agrees_on_a_stun_cut() {
     let throw = |v: &serde_json::Value| v["throw_deg"].as_f64().unwrap();
     assert!((throw(&reference) - throw(&kim_grip)).abs() < 1e-4);
 }
+
+/// `cuesight device` with requests on stdin, against the in-process device.
+fn device(args: &[&str], stdin: &str) -> Output {
+    use std::io::Write;
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_cuesight"))
+        .arg("device")
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("cuesight binary runs");
+    let mut input = child.stdin.take().unwrap();
+    input.write_all(stdin.as_bytes()).unwrap();
+    drop(input);
+    child.wait_with_output().unwrap()
+}
+
+#[test]
+fn device_plays_the_demo_session_on_the_loopback() {
+    let demo = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../firmware/demo/session.jsonl"
+    );
+    let out = device(&["--loopback", "--session", demo], "");
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(0), "{stdout}\n{stderr}");
+    assert!(stdout.starts_with("connected: schema 0x"), "{stdout}");
+    assert!(stdout.contains("< error: speed = -1 is outside (0, 100] m/s"));
+    assert!(stdout.contains("< session over: "), "{stdout}");
+}
+
+#[test]
+fn device_json_answers_one_line_each() {
+    let out = device(
+        &["--loopback", "--json"],
+        "{\"params\":{}}\n{\"collide\":{\"speed\":2,\"cut\":30}}\n",
+    );
+    assert_eq!(out.status.code(), Some(0));
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<Value> = stdout
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("JSON"))
+        .collect();
+    assert_eq!(lines.len(), 2, "{stdout}");
+    assert_eq!(lines[0]["params"]["model"], "kim-grip");
+    assert_eq!(lines[1]["collide"]["input"]["cut_deg"], 30.0);
+}
+
+#[test]
+fn device_fails_after_the_session_on_unexpected_errors() {
+    let out = device(
+        &["--loopback"],
+        "{\"collide\":{\"speed\":-1,\"cut\":30}}\n{\"collide\":{\"speed\":2,\"cut\":NaN}}\n\
+         !expect-error {\"collide\":{\"speed\":0,\"cut\":30}}\n{\"params\":{}}\n",
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    // Played to the end.
+    assert!(stdout.contains("< defaults now: "), "{stdout}");
+    assert!(stderr.contains("2 unexpected error(s)"), "{stderr}");
+    assert!(
+        stderr.contains("line 1: error: speed = -1 is outside"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("line 2: not a request: "), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+#[test]
+fn device_usage_errors() {
+    let out = device(&[], "");
+    assert_eq!(out.status.code(), Some(2));
+    let out = device(&["--loopback", "--session", "/no/such/file"], "");
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        stderr.starts_with("error: cannot read /no/such/file"),
+        "{stderr}"
+    );
+    let out = device(&["--tcp", "127.0.0.1:1"], "");
+    assert_eq!(out.status.code(), Some(3), "no device there");
+}

@@ -1,17 +1,25 @@
-//! Boot the firmware in QEMU and talk to it: a scripted session (`cargo xtask run`),
-//! or requests typed by a person (`cargo xtask run --interactive`).
+//! Boot the firmware in QEMU and talk to it through the device console
+//! (`cuesight_host::device`, what `cuesight device --qemu` runs): a scripted session
+//! (`cargo xtask run`, the demo `firmware/demo/session.jsonl` or `--session FILE`), or
+//! requests typed by a person (`cargo xtask run --interactive`).
 //!
-//! QEMU's stdio is the firmware's UART0 (the protocol, one JSON line each way); the
-//! firmware's defmt frames arrive on QEMU's stderr and go through `defmt-print -e <elf>`
-//! (the harness is `cuesight_host::firmware`). The decoded log is printed after the
-//! session, so it never interleaves with the requests and answers, and is also written
-//! to `target/xtask/firmware.log`. QEMU's exit code is the firmware's verdict.
+//! QEMU's stdio is the firmware's UART0 (link frames each way, `cuesight_link::frame`);
+//! the console sends each request line as a frame and prints it (`>`) with a one-line
+//! summary of its answer (`<`). The firmware's defmt frames arrive on QEMU's stderr and
+//! go through `defmt-print -e <elf>` (the harness is `cuesight_host::firmware`). The
+//! decoded log is printed after the session, so it never interleaves with the requests
+//! and answers, and is also written to `target/xtask/firmware.log`. QEMU's exit code is
+//! the firmware's verdict; an error answer the session file did not mark
+//! `!expect-error` fails the run (after the whole session, listed).
 
-use std::io::BufRead;
+use std::io::{self, IsTerminal};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use cuesight_host::firmware::{qemu_command, Ended, Firmware, FirmwareError};
+use cuesight_host::device::session::{play, Console, DeviceError, Reply, Show, Tally};
+use cuesight_host::device::text::Summary;
+use cuesight_host::device::transport::{Qemu, TransportError};
+use cuesight_host::firmware::{qemu_command, Ended, Firmware};
 use cuesight_link::{Request, Response};
 
 use crate::cmd::{self, Failure, Result};
@@ -51,24 +59,23 @@ pub fn demo_session() -> PathBuf {
     cmd::firmware_dir().join("demo").join("session.jsonl")
 }
 
-fn boot(elf: &Path) -> Result<Firmware> {
+fn boot(elf: &Path) -> Result<Qemu> {
     let defmt_print = tools::defmt_print()?;
     println!(
-        "$ {}\n  (UART0 on stdio; the defmt log on stderr, through {} -e <elf>)",
+        "$ {}\n  (UART0 on stdio, link frames; the defmt log on stderr, through {} -e <elf>)",
         cmd::display(&qemu_command(elf)),
         defmt_print.display(),
     );
     let fw = Firmware::boot(elf, Some(&defmt_print))
         .map_err(|e| Failure::new(format!("cannot boot the firmware in QEMU: {e}")))?;
-    // The unprompted `version` frame at boot.
-    let _ = fw.next_frame(Duration::from_secs(10));
-    Ok(fw)
+    Ok(Qemu::new(fw))
 }
 
-/// Plays `session` (one request per line; `#` lines are headings, `##` lines comments)
-/// against the firmware and prints each request with a one-line summary of its answer.
-/// Fails on a missing or unparseable answer, a non-zero QEMU exit, or after `timeout`
-/// (code 124).
+/// Plays `session` (the console's session format, `cuesight_host::device::session`)
+/// against the firmware and prints each request with a one-line summary of its answer,
+/// then the firmware's log. Fails on an error answer the file did not mark expected (or
+/// a marked line that got none, or a line that is no request), a schema mismatch, a
+/// missing or unreadable answer, a non-zero QEMU exit, or after `timeout` (code 124).
 pub fn run_session(elf: &Path, session: &Path, timeout: Duration) -> Result {
     let text = std::fs::read_to_string(session)
         .map_err(|e| Failure::new(format!("reading {}: {e}", session.display())))?;
@@ -82,112 +89,118 @@ pub fn run_session(elf: &Path, session: &Path, timeout: Duration) -> Result {
         session.display(),
         timeout.as_secs()
     );
-    let mut fw = boot(elf)?;
-    let mut answered = 0usize;
-    let mut shut_down = false;
-    for line in text.lines() {
-        let line = line.trim_end();
-        if line.starts_with("##") {
-            continue; // a comment about the file
-        }
-        if let Some(heading) = line.strip_prefix('#') {
-            println!("\n== {}", heading.trim());
-            continue;
-        }
-        if line.trim().is_empty() {
-            continue;
-        }
-        println!("> {}", shorten(line));
-        let request: Request = match serde_json::from_str(line) {
-            Ok(request) => request,
-            Err(e) => {
-                println!("! not a request: {e}");
-                continue;
-            }
-        };
-        let left = deadline.saturating_duration_since(Instant::now());
-        let seq = answered as u16;
-        let response = match fw.request(seq, &request, left) {
-            Ok(response) => response,
-            Err(error) => return Err(session_failure(fw, error, deadline)),
-        };
-        answered += 1;
-        println!("< {response:?}");
-        shut_down = matches!(response, Response::Shutdown(_));
-        if shut_down {
-            break;
-        }
-    }
-    if !shut_down {
-        println!("> {{\"shutdown\":{{}}}}   (end of the session file)");
-        let left = deadline.saturating_duration_since(Instant::now());
-        match fw.request(
-            answered as u16,
-            &Request::Shutdown(Default::default()),
-            left,
-        ) {
-            Ok(answer) => println!("< {answer:?}"),
-            Err(error) => return Err(session_failure(fw, error, deadline)),
-        }
-    }
-    let ended = fw.wait(deadline.saturating_duration_since(Instant::now()));
+    let mut link = boot(elf)?;
+    let show = Show {
+        json: false,
+        echo: true,
+        lenient: false,
+    };
+    let played = converse(&mut link, text.as_bytes(), show, Some(deadline));
+    let tally = match played {
+        Ok(tally) => tally,
+        Err(error) => return Err(session_failure(link.into_firmware(), error, deadline)),
+    };
+    let ended = link
+        .into_firmware()
+        .wait(deadline.saturating_duration_since(Instant::now()));
     print_log(&ended);
-    finish(&ended, &format!("{answered} requests answered"))
+    finish(&ended, &format!("{} requests answered", tally.sent))?;
+    verdict(&tally)
 }
 
-/// `line`, cut to about two terminal lines.
-fn shorten(line: &str) -> String {
-    const SHOWN: usize = 150;
-    match line.char_indices().nth(SHOWN) {
-        Some((cut, _)) => format!("{}... ({} bytes)", &line[..cut], line.len()),
-        None => line.to_owned(),
+/// Connects (the schema check), plays `input`, and sends `shutdown` if the input did
+/// not. Everything goes to stdout.
+fn converse(
+    link: &mut Qemu,
+    input: impl io::BufRead,
+    show: Show,
+    deadline: Option<Instant>,
+) -> std::result::Result<Tally, DeviceError> {
+    let per_answer = match deadline {
+        Some(deadline) => deadline.saturating_duration_since(Instant::now()),
+        None => Duration::from_secs(24 * 3600),
+    };
+    let mut console = Console::connect(link, per_answer)?;
+    console.set_deadline(deadline);
+    println!(
+        "connected: {}",
+        Summary(&Response::Version(console.version().clone()))
+    );
+    let (mut out, mut notes) = (io::stdout(), io::stdout());
+    let tally = play(&mut console, input, &mut out, &mut notes, show)?;
+    if !tally.shut_down {
+        println!("> {{\"shutdown\":{{}}}}   (end of the session)");
+        match console.ask(&Request::Shutdown(Default::default()))? {
+            Reply::Answer(response) => println!("< {}", Summary(&response)),
+            Reply::Garbled(error) => println!("< (unreadable answer: {error:?})"),
+        }
     }
+    Ok(tally)
 }
 
-/// A person types requests; each answer is printed raw and summarised. End of input
-/// (Ctrl-D) sends `shutdown`; so does typing it. No timeout.
+/// Fails when the session had unexpected errors, listing them.
+fn verdict(tally: &Tally) -> Result {
+    if tally.passed() {
+        println!(
+            "xtask: {} requests, {} expected error(s), no unexpected one",
+            tally.sent, tally.expected_errors
+        );
+        return Ok(());
+    }
+    let mut message = format!(
+        "{} unexpected error(s) in the session:",
+        tally.unexpected.len()
+    );
+    for unexpected in &tally.unexpected {
+        message.push_str(&format!(
+            "\n  line {}: {}",
+            unexpected.line, unexpected.problem
+        ));
+    }
+    Err(Failure::new(message))
+}
+
+/// A person types requests; each answer is summarised. Error answers are shown but do
+/// not fail the run. End of input (Ctrl-D) sends `shutdown`; so does typing it. No
+/// timeout.
 pub fn run_interactive(elf: &Path) -> Result {
-    let mut fw = boot(elf)?;
+    let mut link = boot(elf)?;
     println!(
         "xtask: type one request per line, e.g.\n  \
          {{\"collide\":{{\"speed\":2,\"cut\":30,\"spin\":[0,40,0]}}}}\n  \
          {{\"params\":{{\"mu\":0.06}}}}   {{\"version\":{{}}}}   {{\"shutdown\":{{}}}}\n\
          (docs/protocol.md has them all); Ctrl-D ends the session, the log follows."
     );
-    let stdin = std::io::stdin();
-    let mut seq = 0u16;
-    let mut lines = stdin.lock().lines().map_while(std::io::Result::ok);
-    loop {
-        let request = match lines.next() {
-            Some(line) => match serde_json::from_str::<Request>(&line) {
-                Ok(request) => request,
-                Err(e) => {
-                    println!("! not a request: {e}");
-                    continue;
-                }
-            },
-            None => Request::Shutdown(Default::default()),
-        };
-        match fw.request(seq, &request, Duration::from_secs(60)) {
-            Ok(response) => {
-                println!("< {response:?}");
-                if matches!(response, Response::Shutdown(_)) {
-                    break;
-                }
-            }
-            Err(FirmwareError::Closed) => break,
-            Err(e) => return Err(Failure::new(e.to_string())),
-        }
-        seq = seq.wrapping_add(1);
-    }
-    let ended = fw.wait(Duration::from_secs(10));
+    let stdin = io::stdin();
+    let typing = stdin.is_terminal();
+    let show = Show {
+        json: false,
+        echo: !typing,
+        lenient: typing,
+    };
+    let played = converse(&mut link, stdin.lock(), show, None);
+    let far = Instant::now() + Duration::from_secs(24 * 3600);
+    let tally = match played {
+        Ok(tally) => tally,
+        Err(error) => return Err(session_failure(link.into_firmware(), error, far)),
+    };
+    let ended = link.into_firmware().wait(Duration::from_secs(10));
     print_log(&ended);
-    finish(&ended, "session over")
+    finish(&ended, "session over")?;
+    verdict(&tally)
 }
 
-/// Builds the failure for a session that stopped answering, with the log so far.
-fn session_failure(fw: Firmware, error: FirmwareError, deadline: Instant) -> Failure {
-    let timed_out = matches!(error, FirmwareError::Timeout(_)) || Instant::now() >= deadline;
+/// Builds the failure for a session that stopped, with the log so far.
+fn session_failure(fw: Firmware, error: DeviceError, deadline: Instant) -> Failure {
+    let timed_out = matches!(error, DeviceError::Transport(TransportError::Timeout(_)))
+        || Instant::now() >= deadline;
+    if !matches!(error, DeviceError::Transport(_)) {
+        // The link works but the session cannot go on (another schema, a closed
+        // output): stop the firmware, show its log, say why.
+        let ended = fw.wait(Duration::ZERO);
+        print_log(&ended);
+        return Failure::new(error.to_string());
+    }
     let ended = fw.wait(Duration::from_secs(1));
     print_log(&ended);
     match ended.status {

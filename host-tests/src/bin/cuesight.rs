@@ -8,7 +8,7 @@ use clap::{Args, Parser, Subcommand};
 use cuesight::Params;
 use cuesight_host::cli;
 use cuesight_host::report;
-use cuesight_protocol::{Collide, ModelName, Overrides, Spin};
+use cuesight_link::{Collide, ModelName};
 
 /// Predict what happens when a spinning cue ball hits a resting object ball.
 #[derive(Parser)]
@@ -35,6 +35,16 @@ enum Command {
     /// against the ghost-ball aim; with --aim, plays it. Exit codes: 0 ok, 1 invalid
     /// value or no aim found, 2 usage error. See docs/shot-cli.md.
     Shot(cuesight_host::shot_cli::Flags),
+    /// Talk to a cuesight device: requests as JSON lines in, one answer per request out.
+    ///
+    /// Reads requests (the link's JSON, e.g. {"collide":{"speed":2,"cut":30}}; see
+    /// docs/protocol.md) from --session FILE or stdin, one per line, sends each as a
+    /// frame and prints each answer as a one-line summary, or as JSON with --json. At
+    /// connect it checks the device's schema. Session files: `#` headings, `##`
+    /// comments, `!expect-error ` before a request whose answer must be an error. Exit
+    /// codes: 0 ok, 1 unexpected error answers (listed at the end), 2 usage, 3 link
+    /// failure, 4 schema mismatch.
+    Device(cuesight_host::device::Flags),
 }
 
 #[derive(Args)]
@@ -96,29 +106,25 @@ fn main() -> ExitCode {
     let args = match parsed.command {
         Command::Collide(args) => args,
         Command::Shot(flags) => return cuesight_host::shot_cli::main(&flags),
+        Command::Device(flags) => return cuesight_host::device::main(&flags),
     };
     let request = Collide {
         speed: args.speed,
         cut: args.cut,
-        spin: if args.roll {
-            Spin::Roll
-        } else {
-            Spin::Given(args.spin.unwrap_or([0.0; 3]))
-        },
-        with: Overrides {
-            mu: Some(args.mu),
-            mu_b: args.mu_b,
-            mu_c: args.mu_c,
-            restitution: Some(args.restitution),
-            mu_s: Some(args.mu_s),
-            radius: Some(args.radius),
-            mass: Some(args.mass),
-            model: Some(args.model),
-        },
+        spin: args.spin,
+        roll: args.roll,
+        mu: Some(args.mu),
+        mu_b: args.mu_b,
+        mu_c: args.mu_c,
+        restitution: Some(args.restitution),
+        mu_s: Some(args.mu_s),
+        radius: Some(args.radius),
+        mass: Some(args.mass),
+        model: Some(args.model),
     };
     match cli::collide(&request) {
         Ok(report) if args.json => println!("{}", report::to_json(&report)),
-        Ok(report) => println!("{report}"),
+        Ok(report) => println!("{}", report::Text(&report)),
         Err(error) => {
             eprintln!("error: {error}");
             return ExitCode::from(error.exit_code());
