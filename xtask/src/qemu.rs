@@ -104,7 +104,10 @@ pub fn run_session(elf: &Path, session: &Path, timeout: Duration) -> Result {
         .into_firmware()
         .wait(deadline.saturating_duration_since(Instant::now()));
     print_log(&ended);
-    finish(&ended, &format!("{} requests answered", tally.sent))?;
+    finish(
+        &ended,
+        &format!("{} requests of the session answered", tally.sent),
+    )?;
     verdict(&tally)
 }
 
@@ -160,9 +163,10 @@ fn verdict(tally: &Tally) -> Result {
     Err(Failure::new(message))
 }
 
-/// A person types requests; each answer is summarised. Error answers are shown but do
-/// not fail the run. End of input (Ctrl-D) sends `shutdown`; so does typing it. No
-/// timeout.
+/// A person types requests; each answer is summarised. Typed at a terminal, error
+/// answers are shown but do not fail the run; piped in, stdin is a session like a file
+/// (echoed, and an unexpected error fails the run). End of input (Ctrl-D) sends
+/// `shutdown`; so does typing it. No timeout.
 pub fn run_interactive(elf: &Path) -> Result {
     let mut link = boot(elf)?;
     println!(

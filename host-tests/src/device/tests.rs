@@ -307,3 +307,80 @@ fn the_demo_session_passes_on_the_loopback() {
         "the full window is estimated: {out}"
     );
 }
+
+/// Serves a [`Loopback`] device on a local TCP socket, as QEMU's `-serial tcp::PORT,server`
+/// would serve the firmware; `prefix` is written first (junk before the hello).
+fn tcp_device(prefix: Vec<u8>) -> std::net::SocketAddr {
+    use std::io::Read;
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let address = listener.local_addr().unwrap();
+    std::thread::spawn(move || {
+        let (mut socket, _) = listener.accept().unwrap();
+        let mut device = Loopback::new();
+        let mut buf = [0u8; 512];
+        socket.write_all(&prefix).unwrap();
+        loop {
+            loop {
+                match device.next_frame(Duration::ZERO) {
+                    Ok(Incoming::Frame(raw)) => {
+                        if socket
+                            .write_all(&crate::firmware::cobs_frame(&raw))
+                            .is_err()
+                        {
+                            return;
+                        }
+                    }
+                    Ok(Incoming::Fault(_)) => {}
+                    // Shut down: close the socket.
+                    Err(TransportError::Closed) => return,
+                    Err(_) => break,
+                }
+            }
+            match socket.read(&mut buf) {
+                Ok(0) | Err(_) => return,
+                Ok(n) => {
+                    if device.send(&buf[..n]).is_err() {
+                        return;
+                    }
+                }
+            }
+        }
+    });
+    address
+}
+
+#[test]
+fn a_tcp_stream_carries_a_session() {
+    use super::transport::Stream;
+    // An oversized frame of junk first: cut at MAX_RAW, reported, skipped.
+    let mut junk = vec![7u8; 3000];
+    junk.push(0);
+    let address = tcp_device(junk);
+    let mut link = Stream::tcp(&address.to_string()).unwrap();
+    let first = link.next_frame(TIMEOUT).unwrap();
+    assert!(
+        matches!(
+            first,
+            Incoming::Fault(cuesight_link::error::FrameFault::Oversized { length: 3000 })
+        ),
+        "{first:?}"
+    );
+    let mut console = Console::connect(&mut link, TIMEOUT).unwrap();
+    let (mut out, mut notes) = (Vec::new(), Vec::new());
+    let tally = play(
+        &mut console,
+        "{\"collide\":{\"speed\":2,\"cut\":30}}\n{\"shutdown\":{}}\n".as_bytes(),
+        &mut out,
+        &mut notes,
+        ECHO,
+    )
+    .unwrap();
+    let out = String::from_utf8(out).unwrap();
+    assert!(tally.passed() && tally.shut_down, "{tally:?} {out}");
+    assert!(out.contains("< kim-grip sliding: "), "{out}");
+    // The device closed after shutdown.
+    assert!(matches!(
+        link.next_frame(TIMEOUT),
+        Err(TransportError::Closed)
+    ));
+}
