@@ -239,14 +239,10 @@ impl Session {
     }
 
     fn version(&self) -> VersionAnswer {
-        let mut firmware = heapless::String::new();
-        let mut board = heapless::String::new();
-        push_cut(&mut firmware, self.identity.firmware);
-        push_cut(&mut board, self.identity.board);
         VersionAnswer {
             schema: SCHEMA_HASH,
-            firmware,
-            board,
+            firmware: short_name(self.identity.firmware),
+            board: short_name(self.identity.board),
             max_frame: MAX_FRAME as u16,
             max_samples: MAX_SAMPLES as u16,
             stroke_capacity: STROKE_CAPACITY as u16,
@@ -255,13 +251,10 @@ impl Session {
     }
 }
 
-/// Appends as much of `text` as fits, cut at a character boundary.
-fn push_cut<const N: usize>(into: &mut heapless::String<N>, text: &str) {
-    for c in text.chars() {
-        if into.push(c).is_err() {
-            break;
-        }
-    }
+/// `text` as a short name; empty if it does not fit (the names are the firmware's own
+/// constants, well within [`crate::response::NAME_LEN`]).
+fn short_name<const N: usize>(text: &str) -> heapless::String<N> {
+    heapless::String::try_from(text).unwrap_or_default()
 }
 
 /// The request in a frame's body. Not inlined, nor are [`Session::answer`] and

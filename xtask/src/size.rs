@@ -71,8 +71,13 @@ pub fn report(elf: &Path) -> Result {
     Ok(())
 }
 
-/// Issue 6's flash budget for the release image: 64 KiB.
-pub const FLASH_BUDGET: u64 = 64 * 1024;
+/// The flash budget of the release image, everything included: 48 KiB (the design
+/// card: a BLE SoftDevice must fit beside the firmware on a 192 KB part; issue 6's
+/// budget was 64 KiB). Issue 14's target, 44 KiB, is reported against [`FLASH_TARGET`].
+pub const FLASH_BUDGET: u64 = 48 * 1024;
+/// Issue 14's flash target for the release image: 44 KiB (reported, not enforced: not
+/// met, see docs/reliability.md).
+pub const FLASH_TARGET: u64 = 44 * 1024;
 /// Issue 6's static RAM budget: 16 KiB.
 pub const STATIC_RAM_BUDGET: u64 = 16 * 1024;
 
@@ -100,5 +105,11 @@ pub fn check_budgets(elf: &Path) -> Result {
     }
     println!("static RAM {ram} bytes: within the budget of {STATIC_RAM_BUDGET}");
     println!("flash {flash} bytes: within the budget of {FLASH_BUDGET}");
+    if flash > FLASH_TARGET {
+        println!(
+            "flash {flash} bytes: {} over issue 14's target of {FLASH_TARGET}",
+            flash - FLASH_TARGET
+        );
+    }
     Ok(())
 }

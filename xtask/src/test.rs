@@ -68,7 +68,7 @@ const STEPS: &[Step] = &[
         action: qemu::build_release,
     },
     Step {
-        title: "firmware: release image size (shot request included), flash within 64 KiB and static RAM within 16 KiB",
+        title: "firmware: release image size (shot request included), flash within 48 KiB and static RAM within 16 KiB",
         action: || size::check_budgets(&qemu::elf_path()),
     },
     Step {
@@ -76,7 +76,7 @@ const STEPS: &[Step] = &[
         action: panic_never,
     },
     Step {
-        title: "firmware: nrf52840 board: clippy, release build, flash within 64 KiB and static RAM within 16 KiB (not run: no hardware here)",
+        title: "firmware: nrf52840 board: clippy, release build, flash within 48 KiB and static RAM within 16 KiB (not run: no hardware here)",
         action: nrf52840,
     },
     Step {
