@@ -125,6 +125,9 @@ fn converse(
     };
     let mut console = Console::connect(link, per_answer)?;
     console.set_deadline(deadline);
+    for note in console.take_notes() {
+        println!("note: {note}");
+    }
     println!(
         "connected: {}",
         Summary(&Response::Version(console.version().clone()))

@@ -198,6 +198,9 @@ fn converse(
     shutdown_at_end: bool,
 ) -> Result<Tally, DeviceError> {
     let mut console = Console::connect(link, timeout)?;
+    for seen in console.take_notes() {
+        note(format_args!("note: {seen}"));
+    }
     let device = Summary(&Response::Version(console.version().clone())).to_string();
     if show.json {
         note(format_args!("connected: {device}"));

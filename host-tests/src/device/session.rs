@@ -118,7 +118,9 @@ impl<T: Transport> Console<T> {
         };
         // A leading zero ends any partial frame the device holds (it skips empty ones).
         console.link.send(&[0])?;
-        match console.ask(&Request::Version(Default::default()))? {
+        // Unnumbered errors are the device's answer to whatever it held before the
+        // zero, not to this `version`: skipped.
+        match console.exchange(&Request::Version(Default::default()), false)? {
             Reply::Answer(Response::Version(version)) if version.schema == SCHEMA_HASH => {
                 console.version = version;
                 Ok(console)
@@ -170,6 +172,11 @@ impl<T: Transport> Console<T> {
     /// header) is taken as this request's; an unprompted `version` (a restart) and
     /// answers to other numbers are noted and skipped.
     pub fn ask(&mut self, request: &Request) -> Result<Reply, DeviceError> {
+        self.exchange(request, true)
+    }
+
+    /// [`Console::ask`]; `adopt` takes an unnumbered error answer as the request's.
+    fn exchange(&mut self, request: &Request, adopt: bool) -> Result<Reply, DeviceError> {
         let seq = self.next_seq;
         let mut wire = [0u8; MAX_FRAME];
         let len = match frame::encode(SCHEMA_HASH, seq, request, &mut wire) {
@@ -211,7 +218,7 @@ impl<T: Transport> Console<T> {
                         ));
                     }
                 }
-                Response::Error(error) if answer.seq == UNPROMPTED => {
+                Response::Error(error) if answer.seq == UNPROMPTED && adopt => {
                     return Ok(Reply::Answer(Response::Error(error)))
                 }
                 other => self.notes.push(format!(

@@ -350,6 +350,17 @@ fn tcp_device(prefix: Vec<u8>) -> std::net::SocketAddr {
 }
 
 #[test]
+fn a_device_holding_junk_still_connects() {
+    let mut link = Loopback::new();
+    // Half a frame: the console's leading zero ends it, the device answers it unnumbered.
+    link.send(&[5, 1, 2]).unwrap();
+    let mut console = Console::connect(&mut link, TIMEOUT).unwrap();
+    assert_eq!(console.version().schema, SCHEMA_HASH);
+    assert_eq!(console.take_notes().len(), 1, "the skipped answer is noted");
+    assert_eq!(link.counts(), (2, 1));
+}
+
+#[test]
 fn a_tcp_stream_carries_a_session() {
     use super::transport::Stream;
     // An oversized frame of junk first: cut at MAX_RAW, reported, skipped.
