@@ -72,9 +72,9 @@ pub struct Flags {
     /// A serial port (e.g. /dev/ttyACM0), 8N1.
     #[arg(long, value_name = "PATH")]
     pub serial: Option<String>,
-    /// The serial port's baud rate.
-    #[arg(long, value_name = "N", default_value_t = 115_200, requires = "serial")]
-    pub baud: u32,
+    /// The serial port's baud rate [default: 115200].
+    #[arg(long, value_name = "N", conflicts_with_all = ["tcp", "qemu", "loopback"])]
+    pub baud: Option<u32>,
     /// A TCP socket (e.g. QEMU's -serial tcp::4444,server).
     #[arg(long, value_name = "HOST:PORT")]
     pub tcp: Option<String>,
@@ -167,7 +167,7 @@ pub fn run(flags: &Flags) -> u8 {
             (outcome, _) => outcome,
         }
     } else if let Some(path) = &flags.serial {
-        match Stream::serial(path, flags.baud) {
+        match Stream::serial(path, flags.baud.unwrap_or(115_200)) {
             Ok(mut link) => converse(&mut link, timeout, input, show, false),
             Err(e) => Err(DeviceError::Transport(e)),
         }
