@@ -247,7 +247,7 @@ pub enum UploadFault {
         /// Count in the first chunk.
         expected: u16,
     },
-    /// A chunk count of 0, above [`crate::MAX_CHUNKS`], or an index not below it.
+    /// A chunk count of 0, above [`crate::limits::MAX_CHUNKS`], or an index not below it.
     BadChunk {
         /// Chunk index.
         chunk: u16,

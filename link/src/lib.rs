@@ -36,6 +36,7 @@
 
 pub mod error;
 pub mod frame;
+mod limits;
 pub mod names;
 pub mod request;
 pub mod response;
@@ -44,6 +45,7 @@ pub mod shot;
 mod upload;
 
 pub use error::{LinkError, UploadFault};
+pub use limits::{MAX_CHUNKS, MAX_OBJECT_BALLS, MAX_SAMPLES, SCHEMA_HASH, STROKE_CAPACITY};
 pub use names::{ModelName, RegimeName, TableName};
 pub use request::{
     Collide, Defaults, Empty, Overrides, Request, ShotRequest, StrokeChunk, StrokeSetup,
@@ -51,22 +53,3 @@ pub use request::{
 pub use response::{CollideAnswer, Response, StrokeAnswer, VersionAnswer};
 pub use session::{Control, Identity, Served, Session, UNPROMPTED};
 pub use shot::ShotAnswer;
-
-/// The schema's identity: FNV-1a (32 bits) of the postcard encoding of
-/// `postcard-schema`'s description of [`Request`] and [`Response`]. Every frame carries
-/// it; `tests/schema.rs` recomputes it and fails when the schema changed without it.
-pub const SCHEMA_HASH: u32 = 0xffe5_b4dd;
-
-/// Most raw samples in one stroke chunk.
-pub const MAX_SAMPLES: usize = 256;
-
-/// Most samples in one stroke, all chunks: 1.5 s at the LSM6DSOX's 3.33 kHz (0.75 s at
-/// 6.66 kHz, 5 s at 1 kHz), 10 KB of `i16`, sized for the 16 KiB static RAM budget.
-pub const STROKE_CAPACITY: usize = 5_000;
-
-/// Most chunks in one stroke: room for [`STROKE_CAPACITY`] in chunks shorter than
-/// [`MAX_SAMPLES`] (20 full ones hold it).
-pub const MAX_CHUNKS: usize = 32;
-
-/// Most object balls in a `shot` (the scene holds the cue ball and these).
-pub const MAX_OBJECT_BALLS: usize = cuesight::table::MAX_BALLS - 1;

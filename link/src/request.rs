@@ -8,8 +8,8 @@ use heapless::Vec;
 use serde::{Deserialize, Serialize};
 
 use crate::error::LinkError;
+use crate::limits::{MAX_OBJECT_BALLS, MAX_SAMPLES};
 use crate::names::{ModelName, TableName};
-use crate::{MAX_OBJECT_BALLS, MAX_SAMPLES};
 
 /// One request.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -240,7 +240,7 @@ pub struct StrokeChunk {
     pub stroke: u16,
     /// This chunk's index, from 0.
     pub index: u16,
-    /// Chunks in the stroke, 1 to [`crate::MAX_CHUNKS`].
+    /// Chunks in the stroke, 1 to [`crate::limits::MAX_CHUNKS`].
     pub count: u16,
     /// This chunk's raw words, 1 to [`MAX_SAMPLES`].
     pub samples: Vec<i16, MAX_SAMPLES>,

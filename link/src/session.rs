@@ -5,12 +5,12 @@ use cuesight::collide;
 
 use crate::error::{LinkError, SequenceFault, Unsupported};
 use crate::frame::{self, Received, MAX_FRAME};
+use crate::limits::{MAX_SAMPLES, SCHEMA_HASH, STROKE_CAPACITY};
 use crate::request::{Collide, Defaults, Request, StrokeChunk};
 use crate::response::{
     CollideAnswer, InputEcho, ParamsAnswer, Response, ShutdownAnswer, VersionAnswer,
 };
 use crate::upload::{Step, Upload};
-use crate::{MAX_SAMPLES, SCHEMA_HASH, STROKE_CAPACITY};
 
 /// The sequence number of a frame the device sends unprompted (its `version` at boot):
 /// not an answer to any request.
@@ -216,12 +216,12 @@ impl Session {
     }
 
     #[cfg(feature = "shot")]
-    fn shot(&self, request: &crate::request::ShotRequest) -> Result<crate::ShotAnswer, LinkError> {
+    fn shot(&self, request: &crate::request::ShotRequest) -> Result<crate::shot::ShotAnswer, LinkError> {
         crate::shot::answer(request, &self.defaults)
     }
 
     #[cfg(not(feature = "shot"))]
-    fn shot(&self, _: &crate::request::ShotRequest) -> Result<crate::ShotAnswer, LinkError> {
+    fn shot(&self, _: &crate::request::ShotRequest) -> Result<crate::shot::ShotAnswer, LinkError> {
         Err(LinkError::Unsupported(Unsupported::Shot))
     }
 

@@ -22,9 +22,9 @@ fn find_glitch(_: &[i16], _: f32, _: f32) -> Option<Glitch> {
 use heapless::Vec;
 
 use crate::error::{GlitchName, LinkError, UploadFault};
+use crate::limits::{MAX_CHUNKS, STROKE_CAPACITY};
 use crate::request::{StrokeChunk, StrokeSetup};
 use crate::response::{plain, StrokeAnswer, StrokeProgress};
-use crate::{MAX_CHUNKS, STROKE_CAPACITY};
 
 /// The stroke being uploaded.
 pub struct Upload {
