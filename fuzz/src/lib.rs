@@ -3,7 +3,9 @@
 //! what it was written for. Run them with `cargo xtask fuzz` (docs/reliability.md,
 //! "Fuzzing").
 //!
-//! * [`protocol_line`] — byte streams through the firmware's line reader and session;
+//! * [`link_frame`] — byte streams through the device link's frame reader and decoder;
+//! * [`link_session`] — frame sequences (valid, damaged, out of order) into a device
+//!   session;
 //! * [`shot_scene`] — tables, scenes, strokes, shots, inverse aim and ball motion;
 //! * [`collide`] — every collision model on arbitrary parameters and impacts.
 //!
@@ -13,5 +15,7 @@
 pub mod collide;
 pub mod finite;
 pub mod input;
-pub mod protocol_line;
+pub mod link;
+pub mod link_frame;
+pub mod link_session;
 pub mod shot_scene;

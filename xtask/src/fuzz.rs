@@ -6,10 +6,9 @@
 //!   (`-Zsanitizer=…`, `-Cllvm-args=-sanitizer-coverage-…` with `-Cpasses=sancov-module`)
 //!   and CI has only the stable toolchain, so the build runs with `RUSTC_BOOTSTRAP=1`,
 //!   which lets a stable rustc accept them. It is set for the cargo-fuzz process only.
-//! * **No sanitizer** (`-s none`): the crates fuzzed deny `unsafe` code (core, protocol,
-//!   sensors; serde-json-core's one `unsafe fn` is a checked `get_mut`), so
-//!   AddressSanitizer would find little, and the runs do about twice the executions
-//!   without it. Debug assertions and overflow checks stay on (cargo-fuzz's default).
+//! * **No sanitizer** (`-s none`): the crates fuzzed deny `unsafe` code (core, link,
+//!   sensors), so AddressSanitizer would find little, and the runs do about twice the
+//!   executions without it. Debug assertions and overflow checks stay on (cargo-fuzz's default).
 //! * **Corpora.** The committed seeds (`fuzz/corpus/<target>/`) are read only: libFuzzer
 //!   writes what it finds into the first corpus directory it is given, a scratch one,
 //!   `fuzz/corpus-run/<target>/` (git-ignored, kept between local runs), so a run never
@@ -28,7 +27,7 @@ use crate::cmd::{self, Failure, Result};
 use crate::tools;
 
 /// The fuzz targets, in the order they run (`fuzz/fuzz_targets/<name>.rs`).
-pub const TARGETS: [&str; 3] = ["protocol_line", "shot_scene", "collide"];
+pub const TARGETS: [&str; 4] = ["link_frame", "link_session", "shot_scene", "collide"];
 
 /// Seconds each target runs for in `cargo xtask test`.
 pub const DEFAULT_SECONDS: u64 = 60;
@@ -42,7 +41,7 @@ pub struct Args {
     /// How long each target runs (s).
     #[arg(long, default_value_t = DEFAULT_SECONDS)]
     seconds: u64,
-    /// Targets to run [default: all: protocol_line, shot_scene, collide].
+    /// Targets to run [default: all: link_frame, link_session, shot_scene, collide].
     #[arg(value_name = "TARGET")]
     targets: Vec<String>,
 }
