@@ -250,6 +250,25 @@ fn link_session_seeds(dir: &Path) -> usize {
             },
         ),
         (
+            "stroke-setup-every-field",
+            StrokePlan {
+                setup: Writer::new()
+                    .real(500.0, 8000.0, 1000.0)
+                    .flag(true)
+                    .real(-0.01, 0.01, cuesight_sensors::ACCEL_MPS2_PER_LSB)
+                    .flag(true)
+                    .pair(-0.02, 0.02, [0.005, -0.01])
+                    .flag(true)
+                    .real(0.1, 2.0, 0.5)
+                    .flag(true)
+                    .real(0.0, 1.0, 0.8)
+                    .bytes()
+                    .to_vec(),
+                ..StrokePlan::default()
+            },
+            |r| r.errors.is_empty() && r.estimates == 1,
+        ),
+        (
             "stroke-partial",
             StrokePlan {
                 chunks: 3,

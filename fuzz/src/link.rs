@@ -35,6 +35,8 @@ use cuesight_link::{
     TableName, MAX_SAMPLES, SCHEMA_HASH,
 };
 
+use crate::input::Input;
+
 /// Number of script operations.
 pub const OPS: u8 = 12;
 
@@ -194,9 +196,10 @@ pub fn body_of(request: &Request) -> Vec<u8> {
 }
 
 /// A `STROKE` record: stroke id `a`; `b % 8` chunks sent (0: all); the body, when long
-/// enough, a glitch (`u16` sample index, `i16` value) and a chunk fault (`mode`, chunk
-/// `k`: 1 sends chunk `k` twice, 2 leaves it out, 3 swaps it with the next).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// enough, a glitch (`u16` sample index, `i16` value), a chunk fault (`mode`, chunk `k`:
+/// 1 sends chunk `k` twice, 2 leaves it out, 3 swaps it with the next), and the rest
+/// the last chunk's setup, read as [`Input`] numbers (empty: 1 kHz and the defaults).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct StrokePlan {
     /// Stroke id.
     pub id: u8,
@@ -206,6 +209,8 @@ pub struct StrokePlan {
     pub glitch: Option<(u16, i16)>,
     /// Chunk fault: mode (0 none, 1 duplicate, 2 drop, 3 swap with the next) and chunk.
     pub fault: (u8, u8),
+    /// The setup's bytes (see [`StrokePlan::setup`]).
+    pub setup: Vec<u8>,
 }
 
 impl StrokePlan {
@@ -216,15 +221,42 @@ impl StrokePlan {
                 i16::from_le_bytes([body[2], body[3]]),
             )
         });
-        let fault = match body {
-            [_, _, _, _, mode, k, ..] => (mode % 4, *k),
-            _ => (0, 0),
+        let (fault, setup) = match body {
+            [_, _, _, _, mode, k, setup @ ..] => ((mode % 4, *k), setup.to_vec()),
+            _ => ((0, 0), Vec::new()),
         };
         Self {
             id: a,
             chunks: b % 8,
             glitch,
             fault,
+            setup,
+        }
+    }
+
+    /// The last chunk's setup: with no bytes, the stroke's rate and the defaults; else
+    /// a rate mostly in [500, 8000] Hz, then each of scale, tip offset, cue mass and tip
+    /// restitution absent or a number mostly in a plausible range.
+    pub fn setup(&self) -> StrokeSetup {
+        if self.setup.is_empty() {
+            return StrokeSetup {
+                rate_hz: STROKE_RATE_HZ,
+                tip_offset: Some([0.0, 0.01]),
+                ..StrokeSetup::default()
+            };
+        }
+        let mut input = Input::new(&self.setup);
+        let rate_hz = input.real(500.0, 8000.0);
+        let scale = input.flag().then(|| input.real(-0.01, 0.01));
+        let tip_offset = input.flag().then(|| input.pair(-0.02, 0.02));
+        let cue_mass = input.flag().then(|| input.real(0.1, 2.0));
+        let tip_restitution = input.flag().then(|| input.real(0.0, 1.0));
+        StrokeSetup {
+            rate_hz,
+            scale,
+            tip_offset,
+            cue_mass,
+            tip_restitution,
         }
     }
 
@@ -234,6 +266,7 @@ impl StrokePlan {
         let mut body = index.to_le_bytes().to_vec();
         body.extend_from_slice(&value.to_le_bytes());
         body.extend_from_slice(&[self.fault.0, self.fault.1]);
+        body.extend_from_slice(&self.setup);
         body
     }
 
@@ -247,6 +280,9 @@ impl StrokePlan {
             }
         }
         let mut chunks = stroke_chunks(u16::from(self.id), &samples);
+        if let Some(Request::Stroke(last)) = chunks.last_mut() {
+            last.setup = Some(self.setup());
+        }
         let n = chunks.len();
         let k = usize::from(self.fault.1) % n;
         match self.fault.0 {
@@ -602,6 +638,13 @@ mod tests {
             chunks: 3,
             glitch: Some((100, i16::MIN)),
             fault: (1, 2),
+            setup: crate::input::Writer::new()
+                .real(500.0, 8000.0, 3333.0)
+                .flag(false)
+                .flag(true)
+                .pair(-0.02, 0.02, [0.0, 0.005])
+                .bytes()
+                .to_vec(),
         };
         let mut script = Script::new();
         script.record(op::STROKE, plan.id, plan.chunks, &plan.body());
