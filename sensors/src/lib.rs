@@ -45,11 +45,13 @@
 #![deny(unsafe_code)]
 #![deny(missing_docs)]
 
+pub mod glitch;
 pub mod lsm6dsox;
 pub mod ring;
 pub mod stroke;
 pub mod trigger;
 
+pub use glitch::{find_glitch, Glitch, GlitchKind};
 pub use lsm6dsox::{
     accel_lsb_to_mps2, gyro_lsb_to_radps, Axis, ImuSample, Lsm6dsox, RawSample, ACCEL_MPS2_PER_LSB,
     GYRO_RADPS_PER_LSB,
