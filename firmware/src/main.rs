@@ -18,20 +18,21 @@ mod serve;
 mod shots;
 
 use cuesight_link::frame::{FrameReader, MAX_FRAME};
-use cuesight_link::{Identity, Session, SCHEMA_HASH};
+use cuesight_link::{Identity, Session, Upload, SCHEMA_HASH};
 use static_cell::{ConstStaticCell, StaticCell};
 
 /// Firmware name and version, as `version` reports them.
 const FIRMWARE: &str = concat!(env!("CARGO_PKG_NAME"), " ", env!("CARGO_PKG_VERSION"));
 
-/// The session (10 KB of stroke samples), in `.bss`: built in place by `init_with`, so
-/// it never passes through the stack. (A `ConstStaticCell` would put it in `.data`, and
-/// its 10 KB initial image in flash.)
-static SESSION: StaticCell<Session> = StaticCell::new();
-/// The frame reader (a raw frame's [`cuesight_link::frame::MAX_RAW`] bytes), built in
-/// place like the session: its initial value is not all zero, so a `ConstStaticCell`
-/// would put it in `.data`, and a kilobyte of its image in flash.
-static FRAMES: StaticCell<FrameReader> = StaticCell::new();
+/// The stroke upload (10 KB of samples): all zero when new, so `.bss`. Kept apart from
+/// the session, which borrows it: built whole, the session passed through a 10 KB
+/// temporary on the stack (peak stack 16,212 B over a `version` and a `shutdown`).
+static UPLOAD: ConstStaticCell<Upload> = ConstStaticCell::new(Upload::new());
+/// The session (defaults, frame count; its initial value is not zero, so it is built
+/// at boot rather than kept as a `.data` image in flash).
+static SESSION: StaticCell<Session<&'static mut Upload>> = StaticCell::new();
+/// The frame reader (a raw frame's [`cuesight_link::frame::MAX_RAW`] bytes; `.bss`).
+static FRAMES: ConstStaticCell<FrameReader> = ConstStaticCell::new(FrameReader::new());
 /// The answer frame buffer (`.bss`).
 static ANSWER: ConstStaticCell<[u8; MAX_FRAME]> = ConstStaticCell::new([0; MAX_FRAME]);
 
@@ -47,17 +48,16 @@ fn main() -> ! {
 
     // Each cell is taken once, here (`entry` runs once); the `try_` forms keep the
     // image free of static_cell's panics.
-    let session = SESSION.try_init_with(|| {
-        Session::new(Identity {
-            firmware: FIRMWARE,
-            board: board::NAME,
-        })
-    });
-    let (Some(session), Some(frames), Some(answer)) = (
-        session,
-        FRAMES.try_init_with(FrameReader::new),
-        ANSWER.try_take(),
-    ) else {
+    let identity = Identity {
+        firmware: FIRMWARE,
+        board: board::NAME,
+    };
+    let session = UPLOAD
+        .try_take()
+        .and_then(|upload| SESSION.try_init_with(|| Session::with_upload(identity, upload)));
+    let (Some(session), Some(frames), Some(answer)) =
+        (session, FRAMES.try_take(), ANSWER.try_take())
+    else {
         defmt::error!("the session buffers were already taken");
         board::exit(false)
     };
@@ -75,10 +75,10 @@ fn main() -> ! {
             );
             let (peak, size) = board::peak_stack();
             defmt::info!(
-                "peak stack {=u32} of {=u32} bytes (statics: session {=usize}, frame reader {=usize}, answer {=usize})",
+                "peak stack {=u32} of {=u32} bytes (statics: stroke upload {=usize}, frame reader {=usize}, answer {=usize})",
                 peak,
                 size,
-                core::mem::size_of::<Session>(),
+                core::mem::size_of::<Upload>(),
                 core::mem::size_of::<FrameReader>(),
                 MAX_FRAME
             );

@@ -3,7 +3,7 @@
 //! `cuesight-link`, tested on the host.
 
 use cuesight_link::frame::FrameReader;
-use cuesight_link::{Control, Session};
+use cuesight_link::{Control, Session, Upload};
 use embedded_io::{Read, Write};
 
 /// Sends the unprompted `version` frame (the schema hash, for a host that is listening
@@ -15,7 +15,7 @@ use embedded_io::{Read, Write};
 /// answer buffer are a kilobyte each, too much for the stack budget.
 pub fn serve<S: Read + Write>(
     serial: &mut S,
-    session: &mut Session,
+    session: &mut Session<&'static mut Upload>,
     frames: &mut FrameReader,
     answer: &mut [u8],
 ) -> Result<(), S::Error> {

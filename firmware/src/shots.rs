@@ -92,8 +92,9 @@ pub fn run_all() -> u32 {
     for shot in &SHOTS {
         let impact = match shot.impact() {
             Ok(impact) => impact,
-            Err(e) => {
-                defmt::error!("{=str}: invalid impact: {}", shot.name, e);
+            Err(_) => {
+                // The shots are constants inside every range: this is a broken build.
+                defmt::error!("{=str}: invalid impact", shot.name);
                 failures += Model::ALL.len() as u32;
                 continue;
             }
@@ -106,12 +107,12 @@ pub fn run_all() -> u32 {
                         failures += 1;
                     }
                 }
-                Err(e) => {
+                Err(_) => {
+                    // `collide`'s only error for valid inputs: a non-finite result.
                     defmt::error!(
-                        "{=str} [{=str}]: collide failed: {}",
+                        "{=str} [{=str}]: collide failed (numerical failure)",
                         shot.name,
-                        model.name(),
-                        e
+                        model.name()
                     );
                     failures += 1;
                 }
@@ -158,19 +159,18 @@ fn check(shot: &Shot, model: Model, out: &Outcome) -> bool {
         && out.cue_deflection_deg().is_finite();
     if !finite {
         defmt::error!(
-            "{=str} [{=str}]: non-finite output: {}",
+            "{=str} [{=str}]: non-finite output",
             shot.name,
-            model.name(),
-            out
+            model.name()
         );
         return false;
     }
     if out.object_ball.velocity.x <= 0.0 {
         defmt::error!(
-            "{=str} [{=str}]: object ball not driven forward: {}",
+            "{=str} [{=str}]: object ball not driven forward (v.x {=f32} m/s)",
             shot.name,
             model.name(),
-            out
+            out.object_ball.velocity.x
         );
         return false;
     }

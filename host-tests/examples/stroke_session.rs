@@ -5,7 +5,7 @@
 //!
 //! Default `7 3333 2.5 5000 1`: 5,000 samples at 3,333 Hz, the whole stroke window
 //! (`cuesight_link::STROKE_CAPACITY`, 1.5 s: rest, backswing, forward stroke, impact
-//! and follow-through), sent as stroke 1 in 20 chunks of 250 samples. The last chunk
+//! and follow-through), sent as stroke 1 in 40 chunks of 125 samples. The last chunk
 //! also sets a tip offset 2R/5 above centre (natural roll).
 
 use cuesight_host::strokes::{stroke_chunks, synthetic_stroke_of};
@@ -40,7 +40,7 @@ fn main() {
         }
     };
     let stroke = synthetic_stroke_of(seed, rate, speed, Some(samples));
-    let mut chunks = stroke_chunks(&stroke, id, 250);
+    let mut chunks = stroke_chunks(&stroke, id, 125);
     if let Some(setup) = chunks.last_mut().and_then(|last| last.setup.as_mut()) {
         setup.tip_offset = Some([0.0, 0.4 * cuesight::Params::POOL.radius()]);
     }

@@ -27,9 +27,10 @@ use serde::{Deserialize, Serialize};
 use crate::error::{FrameFault, LinkError};
 
 /// Longest raw frame (header, body and CRC), in bytes. A full `stroke` chunk
-/// ([`crate::MAX_SAMPLES`] samples, at most 3 bytes each) and its fields fit, and so does
-/// the largest answer (`shot`'s, a few hundred bytes).
-pub const MAX_RAW: usize = 1024;
+/// ([`crate::MAX_SAMPLES`] samples, at most 3 bytes each, and its setup: at most 435
+/// bytes) fits, and so does the largest answer (`shot`'s, at most about 400;
+/// `tests/roundtrip.rs` encodes arbitrary values of every message within it).
+pub const MAX_RAW: usize = 512;
 
 /// Longest encoded frame: COBS adds one byte per 254 and one more, and the zero ends it.
 pub const MAX_FRAME: usize = MAX_RAW + MAX_RAW / 254 + 2;
@@ -139,7 +140,10 @@ pub struct FrameReader {
     /// Encoded bytes of the frame in progress (for the oversize report).
     seen: u32,
     state: cobs::DecoderState,
-    fault: Option<FrameFault>,
+    /// The frame in progress is longer than [`MAX_RAW`].
+    oversized: bool,
+    /// A zero cut a COBS block short.
+    broken: bool,
 }
 
 impl Default for FrameReader {
@@ -156,7 +160,8 @@ impl FrameReader {
             len: 0,
             seen: 0,
             state: cobs::DecoderState::Idle,
-            fault: None,
+            oversized: false,
+            broken: false,
         }
     }
 
@@ -175,17 +180,14 @@ impl FrameReader {
                         *slot = data;
                         self.len += 1;
                     }
-                    None => {
-                        self.fault
-                            .get_or_insert(FrameFault::Oversized { length: 0 });
-                    }
+                    None => self.oversized = true,
                 }
                 None
             }
             Ok(cobs::DecodeResult::DataComplete) => Some(self.finish()),
             // Only a zero can be invalid: it cut a COBS block short.
             Err(_) => {
-                self.fault.get_or_insert(FrameFault::Cobs);
+                self.broken = true;
                 Some(self.finish())
             }
         }
@@ -195,12 +197,13 @@ impl FrameReader {
     fn finish(&mut self) -> Received<'_> {
         let len = core::mem::take(&mut self.len);
         let seen = core::mem::take(&mut self.seen);
-        match self.fault.take() {
-            Some(FrameFault::Oversized { .. }) => {
-                Received::Fault(FrameFault::Oversized { length: seen })
-            }
-            Some(fault) => Received::Fault(fault),
-            None => Received::Frame(self.buf.get(..len).unwrap_or_default()),
+        let broken = core::mem::take(&mut self.broken);
+        if core::mem::take(&mut self.oversized) {
+            Received::Fault(FrameFault::Oversized { length: seen })
+        } else if broken {
+            Received::Fault(FrameFault::Cobs)
+        } else {
+            Received::Frame(self.buf.get(..len).unwrap_or_default())
         }
     }
 }

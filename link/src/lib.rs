@@ -53,3 +53,4 @@ pub use request::{
 pub use response::{CollideAnswer, Response, StrokeAnswer, VersionAnswer};
 pub use session::{Control, Identity, Served, Session, UNPROMPTED};
 pub use shot::ShotAnswer;
+pub use upload::Upload;

@@ -1,12 +1,14 @@
 //! The device's side of the link: one frame in, one answer frame out, and the state
 //! kept between them (the session defaults, the stroke upload, the frame count).
 
+use core::borrow::BorrowMut;
+
 use cuesight::collide;
 
 use crate::error::{LinkError, SequenceFault, Unsupported};
 use crate::frame::{self, Received, MAX_FRAME};
 use crate::limits::{MAX_SAMPLES, SCHEMA_HASH, STROKE_CAPACITY};
-use crate::request::{Collide, Defaults, Request, StrokeChunk};
+use crate::request::{Collide, Defaults, Request, ShotRequest, StrokeChunk};
 use crate::response::{
     CollideAnswer, InputEcho, ParamsAnswer, Response, ShutdownAnswer, VersionAnswer,
 };
@@ -46,22 +48,34 @@ pub struct Served {
 }
 
 /// A session: the defaults in force, the stroke upload in progress, the frame count.
-pub struct Session {
+///
+/// It owns its [`Upload`] (10 KB: [`Session::new`]), or borrows one
+/// ([`Session::with_upload`]): a device keeps the upload in a static of its own, whose
+/// initial value is all zero (`.bss`), so the session is built without a 10 KB
+/// temporary on the stack.
+pub struct Session<U: BorrowMut<Upload> = Upload> {
     defaults: Defaults,
     identity: Identity,
-    upload: Upload,
+    upload: U,
     last_seq: Option<u16>,
     requests: u32,
     errors: u32,
 }
 
 impl Session {
-    /// A new session with [`Defaults::POOL`].
+    /// A new session with [`Defaults::POOL`] and an upload of its own.
     pub const fn new(identity: Identity) -> Self {
+        Session::with_upload(identity, Upload::new())
+    }
+}
+
+impl<U: BorrowMut<Upload>> Session<U> {
+    /// A new session with [`Defaults::POOL`], its stroke upload kept in `upload`.
+    pub const fn with_upload(identity: Identity, upload: U) -> Self {
         Self {
             defaults: Defaults::POOL,
             identity,
-            upload: Upload::new(),
+            upload,
             last_seq: None,
             requests: 0,
             errors: 0,
@@ -86,45 +100,38 @@ impl Session {
 
     /// Answers one received frame (from a [`crate::frame::FrameReader`]) into `out`,
     /// which should hold [`MAX_FRAME`] bytes.
+    ///
+    /// Each answer is encoded where it is computed, in the frame of the function that
+    /// computed it, so no answer is copied up the call chain: the device's stack holds
+    /// one at a time (its peak stack is a budget).
+    #[inline(never)]
     pub fn serve(&mut self, received: Received<'_>, out: &mut [u8]) -> Served {
         self.requests = self.requests.saturating_add(1);
-        let (seq, result) = self.answer(received);
-        let (response, outcome, control) = match result {
-            Ok((response, name)) => {
-                let control = if matches!(response, Response::Shutdown(_)) {
-                    Control::Shutdown
-                } else {
-                    Control::Continue
-                };
-                (response, Ok(name), control)
-            }
+        let (seq, result) = self.answer(received, out);
+        match result {
+            Ok((len, name, control)) => Served {
+                len,
+                outcome: Ok(name),
+                control,
+            },
             Err(error) => {
                 self.errors = self.errors.saturating_add(1);
                 // The frame may have been a chunk of the stroke in progress: drop the
                 // upload rather than estimate a window with a hole.
-                self.upload.clear();
-                (Response::Error(error), Err(error), Control::Continue)
+                self.upload.borrow_mut().clear();
+                Served {
+                    len: send(seq, &Response::Error(error), out).unwrap_or(0),
+                    outcome: Err(error),
+                    control: Control::Continue,
+                }
             }
-        };
-        let len = match frame::encode(SCHEMA_HASH, seq, &response, out) {
-            Ok(len) => len,
-            Err(error) => {
-                frame::encode(SCHEMA_HASH, seq, &Response::Error(error), out).unwrap_or(0)
-            }
-        };
-        Served {
-            len,
-            outcome,
-            control,
         }
     }
 
-    /// The answer to a frame, and the sequence number it goes out with.
+    /// Answers a frame into `out`: the sequence number the answer goes out with, and
+    /// the answer's length, the request's name and what next, or the error to send.
     #[inline(never)]
-    fn answer(
-        &mut self,
-        received: Received<'_>,
-    ) -> (u16, Result<(Response, &'static str), LinkError>) {
+    fn answer(&mut self, received: Received<'_>, out: &mut [u8]) -> (u16, Answered) {
         let raw = match received {
             Received::Frame(raw) => raw,
             Received::Fault(fault) => return (UNPROMPTED, Err(LinkError::Frame(fault))),
@@ -146,10 +153,7 @@ impl Session {
         if let Err(fault) = self.check_sequence(seq, restarts) {
             return (seq, Err(LinkError::Sequence(fault)));
         }
-        let result = request.and_then(|request| {
-            let name = request.name();
-            self.dispatch(&request).map(|response| (response, name))
-        });
+        let result = request.and_then(|request| self.dispatch(&request, seq, out));
         (seq, result)
     }
 
@@ -174,11 +178,14 @@ impl Session {
         }
     }
 
+    /// Runs `request` and encodes its answer into `out`.
     #[inline(never)]
-    fn dispatch(&mut self, request: &Request) -> Result<Response, LinkError> {
-        Ok(match request {
-            Request::Version(_) => Response::Version(self.version()),
-            Request::Collide(collide) => Response::Collide(self.collide(collide)?),
+    fn dispatch(&mut self, request: &Request, seq: u16, out: &mut [u8]) -> Answered {
+        let name = request.name();
+        let mut control = Control::Continue;
+        let len = match request {
+            Request::Version(_) => send(seq, &Response::Version(self.version()), out)?,
+            Request::Collide(collide) => self.collide(collide, seq, out)?,
             Request::Params(overrides) => {
                 let defaults = overrides.apply(&self.defaults)?;
                 defaults
@@ -186,19 +193,28 @@ impl Session {
                     .core()
                     .ok_or(LinkError::Unsupported(Unsupported::ReferenceModel))?;
                 self.defaults = defaults;
-                Response::Params(ParamsAnswer::from(&self.defaults))
+                send(
+                    seq,
+                    &Response::Params(ParamsAnswer::from(&self.defaults)),
+                    out,
+                )?
             }
-            Request::Stroke(chunk) => self.stroke(chunk)?,
-            Request::Shot(shot) => Response::Shot(self.shot(shot)?),
-            Request::Shutdown(_) => Response::Shutdown(ShutdownAnswer {
-                requests: self.requests,
-                errors: self.errors,
-            }),
-        })
+            Request::Stroke(chunk) => self.stroke(chunk, seq, out)?,
+            Request::Shot(shot) => self.shot(shot, seq, out)?,
+            Request::Shutdown(_) => {
+                control = Control::Shutdown;
+                let counts = ShutdownAnswer {
+                    requests: self.requests,
+                    errors: self.errors,
+                };
+                send(seq, &Response::Shutdown(counts), out)?
+            }
+        };
+        Ok((len, name, control))
     }
 
     #[inline(never)]
-    fn collide(&self, request: &Collide) -> Result<CollideAnswer, LinkError> {
+    fn collide(&self, request: &Collide, seq: u16, out: &mut [u8]) -> Result<usize, LinkError> {
         let prepared = request.prepare(&self.defaults)?;
         let model = prepared
             .model
@@ -212,30 +228,45 @@ impl Session {
             &prepared.params,
             &prepared.impact,
         );
-        Ok(CollideAnswer::new(prepared.model, input, &outcome))
+        let answer = CollideAnswer::new(prepared.model, input, &outcome);
+        send(seq, &Response::Collide(answer), out)
     }
 
+    /// `shot`, guided and encoded in a frame of its own (the guidance is the deepest
+    /// stack the device has).
     #[cfg(feature = "shot")]
-    fn shot(&self, request: &crate::request::ShotRequest) -> Result<crate::shot::ShotAnswer, LinkError> {
-        crate::shot::answer(request, &self.defaults)
+    #[inline(never)]
+    fn shot(&self, request: &ShotRequest, seq: u16, out: &mut [u8]) -> Result<usize, LinkError> {
+        // Read where it lies: moved out of its `Result`, the answer would be copied.
+        match crate::shot::answer(request, &self.defaults) {
+            Ok(ref response) => send(seq, response, out),
+            Err(error) => Err(error),
+        }
     }
 
     #[cfg(not(feature = "shot"))]
-    fn shot(&self, _: &crate::request::ShotRequest) -> Result<crate::shot::ShotAnswer, LinkError> {
+    fn shot(&self, _: &ShotRequest, _: u16, _: &mut [u8]) -> Result<usize, LinkError> {
         Err(LinkError::Unsupported(Unsupported::Shot))
     }
 
     /// Adds a chunk to the upload; on the last one, estimates and clears it.
     #[inline(never)]
-    fn stroke(&mut self, chunk: &StrokeChunk) -> Result<Response, LinkError> {
-        match self.upload.push(chunk).map_err(LinkError::Upload)? {
-            Step::Held(progress) => Ok(Response::StrokeChunk(progress)),
+    fn stroke(
+        &mut self,
+        chunk: &StrokeChunk,
+        seq: u16,
+        out: &mut [u8],
+    ) -> Result<usize, LinkError> {
+        let upload = self.upload.borrow_mut();
+        let response = match upload.push(chunk).map_err(LinkError::Upload)? {
+            Step::Held(progress) => Response::StrokeChunk(progress),
             Step::Complete(setup) => {
-                let answer = self.upload.estimate(&setup, &self.defaults.params);
-                self.upload.clear();
-                Ok(Response::Stroke(answer?))
+                let answer = upload.estimate(&setup, &self.defaults.params);
+                upload.clear();
+                Response::Stroke(answer?)
             }
-        }
+        };
+        send(seq, &response, out)
     }
 
     fn version(&self) -> VersionAnswer {
@@ -255,6 +286,15 @@ impl Session {
 /// constants, well within [`crate::response::NAME_LEN`]).
 fn short_name<const N: usize>(text: &str) -> heapless::String<N> {
     heapless::String::try_from(text).unwrap_or_default()
+}
+
+/// What [`Session::answer`] did: the answer's length, the request's name and what
+/// next; or the error to send.
+type Answered = Result<(usize, &'static str, Control), LinkError>;
+
+/// Encodes `response` as the answer to frame `seq`.
+fn send(seq: u16, response: &Response, out: &mut [u8]) -> Result<usize, LinkError> {
+    frame::encode(SCHEMA_HASH, seq, response, out)
 }
 
 /// The request in a frame's body. Not inlined, nor are [`Session::answer`] and

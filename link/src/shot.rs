@@ -176,6 +176,7 @@ mod serve {
     use crate::error::{LinkError, Unsupported};
     use crate::names::TableName;
     use crate::request::{Defaults, Overrides, ShotRequest};
+    use crate::response::Response;
 
     /// `[x, y]` of a vector.
     fn xy(v: Vec3) -> [f32; 2] {
@@ -190,11 +191,43 @@ mod serve {
         }
     }
 
-    /// Validates `request` against `defaults` (contact parameters, cue, cloth, tip, the
-    /// balls, the aim), plays or solves it, and returns the answer. Not inlined: the
-    /// guidance is the device's deepest stack.
+    /// Validates `request` against `defaults`, plays or solves it, and returns the
+    /// answer (as the [`Response`] to send, built in place). The validation, the guidance and the answer each run in a frame of their
+    /// own (the guidance is the device's deepest stack): the prepared shot and the
+    /// guidance are read where they lie, not moved.
     #[inline(never)]
-    pub fn answer(request: &ShotRequest, defaults: &Defaults) -> Result<ShotAnswer, LinkError> {
+    pub fn answer(request: &ShotRequest, defaults: &Defaults) -> Result<Response, LinkError> {
+        let prepared = prepare(request, defaults);
+        let (scene, tip, aim, setup, model) = match prepared {
+            Ok(ref prepared) => prepared,
+            Err(error) => return Err(error),
+        };
+        let guidance = run_guide(scene, request.speed, *tip, *aim, setup);
+        match guidance {
+            Ok(ref guidance) => Ok(Response::Shot(from_guidance(request.tip, *model, guidance))),
+            Err(error) => Err(error.into()),
+        }
+    }
+
+    /// [`guide`] in a frame of its own.
+    #[inline(never)]
+    fn run_guide(
+        scene: &Scene,
+        speed: f32,
+        tip: TipOffset,
+        aim: Aim,
+        setup: &ShotSetup,
+    ) -> Result<Guidance, cuesight::aim::AimError> {
+        guide(scene, speed, tip, aim, setup)
+    }
+
+    /// A validated shot: the scene, the tip, the aim, the setup and the model's name.
+    type Prepared = (Scene, TipOffset, Aim, ShotSetup, ModelName);
+
+    /// Validates `request` against `defaults`: contact parameters, cue, cloth, tip, the
+    /// balls (each on the table, none overlapping), the aim; errors name the field.
+    #[inline(never)]
+    fn prepare(request: &ShotRequest, defaults: &Defaults) -> Result<Prepared, LinkError> {
         let (table, set) = table(request.table);
         let with = Overrides {
             mu: request.mu,
@@ -247,8 +280,7 @@ mod serve {
             cloth,
             model: core_model,
         };
-        let guidance = guide(&scene, request.speed, tip, aim, &setup)?;
-        Ok(from_guidance(request.tip, model, &guidance))
+        Ok((scene, tip, aim, setup, model))
     }
 
     /// The answer's fields from the core's guidance.

@@ -4,21 +4,9 @@
 
 use cuesight::strike::{Cue, TipOffset};
 use cuesight::Params;
-use cuesight_sensors::{estimate_raw, StrokeConfig, StrokeError, ACCEL_MPS2_PER_LSB};
-// TEMPSHIM until sensors::glitch lands
-#[allow(dead_code)]
-enum GlitchKind {
-    Rail,
-    Spike,
-}
-struct Glitch {
-    index: usize,
-    kind: GlitchKind,
-    value: i16,
-}
-fn find_glitch(_: &[i16], _: f32, _: f32) -> Option<Glitch> {
-    None
-}
+use cuesight_sensors::{
+    estimate_raw, find_glitch, GlitchKind, StrokeConfig, StrokeError, ACCEL_MPS2_PER_LSB,
+};
 use heapless::Vec;
 
 use crate::error::{GlitchName, LinkError, UploadFault};
@@ -26,7 +14,8 @@ use crate::limits::{MAX_CHUNKS, STROKE_CAPACITY};
 use crate::request::{StrokeChunk, StrokeSetup};
 use crate::response::{plain, StrokeAnswer, StrokeProgress};
 
-/// The stroke being uploaded.
+/// The stroke being uploaded: 10 KB of samples, all zero when new (see
+/// [`crate::Session::with_upload`]).
 pub struct Upload {
     /// Stroke id; meaningful while `chunks` is not empty.
     stroke: u16,
@@ -38,11 +27,17 @@ pub struct Upload {
 }
 
 /// What a chunk did.
-pub enum Step {
+pub(crate) enum Step {
     /// Held; more chunks to come.
     Held(StrokeProgress),
     /// The last chunk: the whole stroke, ready for [`Upload::estimate`].
     Complete(StrokeSetup),
+}
+
+impl Default for Upload {
+    fn default() -> Self {
+        Self::new()
+    }
 }
 
 impl Upload {
@@ -57,13 +52,13 @@ impl Upload {
     }
 
     /// Drops the upload in progress.
-    pub fn clear(&mut self) {
+    pub(crate) fn clear(&mut self) {
         self.chunks.clear();
         self.samples.clear();
     }
 
     /// Takes one chunk. Errors drop the upload (the caller clears on every error).
-    pub fn push(&mut self, chunk: &StrokeChunk) -> Result<Step, UploadFault> {
+    pub(crate) fn push(&mut self, chunk: &StrokeChunk) -> Result<Step, UploadFault> {
         let StrokeChunk {
             stroke,
             index,

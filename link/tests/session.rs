@@ -404,7 +404,7 @@ fn the_count_wraps_and_version_restarts_it() {
 #[test]
 fn every_truncation_of_a_frame_is_a_frame_fault() {
     let mut device = warm();
-    let mut frames = 0;
+    let (mut frames, mut cuts) = (0, 0);
     for request in [
         collide(),
         stroke_requests(7, &synthetic_stroke(3))[1].clone(),
@@ -415,9 +415,11 @@ fn every_truncation_of_a_frame_is_a_frame_fault() {
             // The tail is lost, the zero arrives.
             let truncated = [&encoded[..cut], &[0]].concat();
             frames += expect_frame_faults(&mut device, &truncated);
+            cuts += 1;
         }
     }
-    assert!(frames > 500, "{frames} truncated frames");
+    assert_eq!(frames, cuts, "one answer per truncated frame");
+    assert!(cuts > 200, "{cuts} truncations");
     // Nothing of it was taken as a frame: 2 is still next.
     device.serves_normally(2);
 }
@@ -425,12 +427,14 @@ fn every_truncation_of_a_frame_is_a_frame_fault() {
 #[test]
 fn every_bit_flip_in_a_frame_is_a_frame_fault() {
     let mut device = warm();
-    let mut frames = 0;
+    let (mut frames, mut flips) = (0, 0);
     for request in [
         collide(),
         stroke_requests(7, &synthetic_stroke(3))[2].clone(),
     ] {
         let frame = wire(2, &request);
+        // Every bit but the zero's (a flipped zero merges the frame with the next: see
+        // `a_lost_zero_merges_two_frames_into_one_fault`).
         let encoded = frame.len() - 1;
         for i in 0..encoded {
             for bit in 0..8 {
@@ -438,10 +442,12 @@ fn every_bit_flip_in_a_frame_is_a_frame_fault() {
                 flipped[i] ^= 1 << bit;
                 // A flip that makes a zero splits the frame: each piece is answered.
                 frames += expect_frame_faults(&mut device, &flipped);
+                flips += 1;
             }
         }
     }
-    assert!(frames > 4_000, "{frames} flipped frames");
+    assert!(frames >= flips, "{frames} answers to {flips} flipped frames");
+    assert!(flips > 1_600, "{flips} flips");
     device.serves_normally(2);
 }
 
@@ -583,7 +589,7 @@ const G: f64 = 9.806_65;
 /// impact, as `host-tests/src/strokes.rs` draws them (rest 0.4 s, a half-cosine
 /// backswing, a pause, a half-cosine forward stroke, a −50 g impact clipped at the full
 /// scale, a follow-through; 5° of cue tilt, a 20 mg offset, 8 mg RMS noise), with a
-/// small generator of its own: 1,332 samples, six chunks.
+/// small generator of its own: 1,332 samples.
 fn synthetic_stroke(seed: u64) -> Vec<i16> {
     let mut state = seed;
     let mut uniform = move || {
@@ -685,7 +691,7 @@ fn upload_fault(fault: UploadFault) -> LinkError {
 #[test]
 fn a_clean_upload_is_estimated_after_a_request_in_between() {
     let chunks = stroke_requests(7, &synthetic_stroke(3));
-    assert_eq!(chunks.len(), 6);
+    assert!(chunks.len() >= 4, "{} chunks", chunks.len());
     let expected = fresh_estimate(&chunks);
     let mut device = warm();
     // A request between two chunks does not disturb the upload.
@@ -744,12 +750,13 @@ fn a_missing_chunk_drops_the_upload() {
         }),
     );
     // Nothing half-uploaded is estimated: not even on the last chunk.
+    let last = chunks.len() - 1;
     device.refused(
         5,
-        &chunks[5],
+        &chunks[last],
         upload_fault(UploadFault::NotStarted {
             stroke: 7,
-            chunk: 5,
+            chunk: last as u16,
         }),
     );
     let (answer, next) = upload(&mut device, 6, &chunks);
@@ -938,7 +945,6 @@ fn the_other_upload_faults_name_their_chunk() {
 }
 
 #[test]
-#[ignore = "waits for sensors::find_glitch (link/src/upload.rs has a stand-in that finds none)"]
 fn a_glitch_sample_names_its_chunk_and_sample() {
     let samples = synthetic_stroke(3);
     let expected = fresh_estimate(&stroke_requests(7, &samples));
@@ -994,4 +1000,29 @@ fn shutdown_reports_the_counts_and_the_session_still_answers() {
     };
     assert_eq!((counts.requests, counts.errors), (4, 1));
     device.serves_normally(7);
+}
+
+#[test]
+fn the_unprompted_version_at_boot_is_a_version_frame() {
+    let device = Device::new();
+    let mut out = [0u8; MAX_FRAME];
+    let len = device.session.hello(&mut out);
+    let answer = host_read(&out[..len]);
+    assert_eq!(answer.seq, UNPROMPTED);
+    let Response::Version(version) = answer.response else {
+        panic!("{:?}", answer.response);
+    };
+    assert_eq!(version.schema, SCHEMA_HASH);
+    assert_eq!(
+        (version.firmware.as_str(), version.board.as_str()),
+        (IDENTITY.firmware, IDENTITY.board)
+    );
+    assert_eq!(usize::from(version.max_frame), MAX_FRAME);
+    assert_eq!(usize::from(version.max_samples), MAX_SAMPLES);
+    assert_eq!(usize::from(version.stroke_capacity), STROKE_CAPACITY);
+    // The answer to a request numbered 0xffff carries the same number as an unprompted
+    // frame: a host counting past 65,535 frames cannot tell them apart by the number.
+    let mut device = Device::new();
+    let answer = device.one(&wire(u16::MAX, &collide()));
+    assert_eq!(answer.seq, UNPROMPTED);
 }
