@@ -203,9 +203,18 @@ fn link_session_seeds(dir: &Path) -> usize {
                 glitch: Some((100, i16::MIN)),
                 ..StrokePlan::default()
             },
-            // Refused as a glitch once link/src/upload.rs uses sensors::find_glitch; its
-            // stand-in finds none, and the estimator takes the stroke.
-            (|r: &link_session::Report| r.errors.len() + r.estimates as usize == 1) as Check,
+            (|r: &link_session::Report| {
+                r.estimates == 0
+                    && matches!(
+                        r.errors[..],
+                        [LinkError::Upload(UploadFault::Glitch {
+                            chunk: 0,
+                            sample: 100,
+                            value: i16::MIN,
+                            ..
+                        })]
+                    )
+            }) as Check,
         ),
         (
             "stroke-duplicate-chunk",

@@ -446,7 +446,10 @@ fn every_bit_flip_in_a_frame_is_a_frame_fault() {
             }
         }
     }
-    assert!(frames >= flips, "{frames} answers to {flips} flipped frames");
+    assert!(
+        frames >= flips,
+        "{frames} answers to {flips} flipped frames"
+    );
     assert!(flips > 1_600, "{flips} flips");
     device.serves_normally(2);
 }
@@ -950,8 +953,8 @@ fn a_glitch_sample_names_its_chunk_and_sample() {
     let expected = fresh_estimate(&stroke_requests(7, &samples));
     let mut device = warm();
     let mut seq = 2;
-    // At the rail in the rest window (chunk 0, and chunk 1: samples 0..400 are the
-    // rest), and a one-sample spike there.
+    // At the rail in the rest window (samples 0..400: the first chunk and a later one),
+    // and a one-sample spike there.
     for (index, value, kind) in [
         (100usize, i16::MIN, GlitchName::Rail),
         (300, i16::MIN, GlitchName::Rail),
