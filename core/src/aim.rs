@@ -34,6 +34,7 @@ pub const TOLERANCE: f32 = 1e-5;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 #[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub enum AimError {
     /// An input is invalid.
