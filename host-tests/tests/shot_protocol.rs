@@ -1,29 +1,34 @@
-//! The protocol's `shot` request gives the same answer as `cuesight shot --json`.
+//! The link's `shot` request gives the numbers of `cuesight shot --json`.
 //!
-//! Each seeded scene is written once as a `shot` body; the same JSON object is the
-//! CLI's scene file (the request's keys are the scene file's). The session's answer
-//! must hold exactly the CLI's keys (but the scene echo and the pocket names, which the
-//! device leaves to the host) with identical values: both print `f32` with ryu's
-//! shortest form, so the same numbers give the same text. The firmware's answers are
-//! compared with the host session's by the end-to-end test, which closes the chain.
+//! Each seeded scene is written once as JSON: the `shot` request's body (a
+//! [`ShotRequest`], the same keys) and the CLI's scene file. The request goes to a host
+//! [`Session`] as a frame, as the firmware gets it (the end-to-end shot test shows the
+//! firmware answering exactly as this session does, which closes the chain); its
+//! answer, in its JSON form, is compared with the CLI's output key by key: every value
+//! under a key both have must be equal (numbers to the bit as `f32`: both come from the
+//! same `f32` computations). Keys only one side has are listed once, not failed: the device leaves
+//! the scene echo and pocket names to the host, and the CLI's JSON is its own.
 
+use std::collections::BTreeSet;
 use std::process::Command;
 
+use cuesight_host::firmware::{open_answer, request_frame, Incoming};
 use cuesight_host::shot_scenes::random_body;
-use cuesight_protocol::{Identity, Session, MAX_ANSWER};
+use cuesight_link::frame::{FrameReader, MAX_FRAME, MAX_RAW};
+use cuesight_link::{Identity, Request, Response, Session, ShotRequest};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use serde_json::{json, Map, Value};
+use serde_json::Value;
 
 const BIN: &str = env!("CARGO_BIN_EXE_cuesight");
 
-/// Keys of the CLI's answer the device does not send.
-const HOST_ONLY: [&str; 5] = ["table", "balls", "mu_cloth", "mu_roll", "pocket_name"];
+/// Scenes compared.
+const SCENES: usize = 150;
 
 /// `cuesight shot --scene FILE --json`: the answer, or the error line.
 fn cli(body: &Value, index: usize) -> Result<Value, String> {
     let path = std::env::temp_dir().join(format!(
-        "cuesight-shot-protocol-{}-{index}.json",
+        "cuesight-shot-link-{}-{index}.json",
         std::process::id()
     ));
     std::fs::write(&path, body.to_string()).expect("write the scene file");
@@ -40,107 +45,129 @@ fn cli(body: &Value, index: usize) -> Result<Value, String> {
     }
 }
 
-/// Every key of `device` is in `host` with the same value (recursively); every key of
-/// `host` but [`HOST_ONLY`] is in `device`.
-fn same(device: &Value, host: &Value, path: &str, differences: &mut Vec<String>) {
-    match (device, host) {
-        (Value::Object(d), Value::Object(h)) => {
-            let keys = |m: &Map<String, Value>| -> Vec<String> {
-                m.keys()
-                    .filter(|k| !HOST_ONLY.contains(&k.as_str()))
-                    .cloned()
-                    .collect()
-            };
-            let (mut dk, mut hk) = (keys(d), keys(h));
-            dk.sort();
-            hk.sort();
-            if dk != hk {
-                differences.push(format!("{path}: keys {dk:?} vs {hk:?}"));
-                return;
+/// What comparing two answers found.
+#[derive(Default)]
+struct Comparison {
+    /// Values compared (numbers, strings, booleans, nulls).
+    values: usize,
+    /// Paths whose values differ.
+    differences: Vec<String>,
+    /// Key paths (without array indices) only the device's answer has.
+    device_only: BTreeSet<String>,
+    /// Key paths only the CLI's has.
+    cli_only: BTreeSet<String>,
+}
+
+/// Compares `device` with `cli` under every key both have.
+fn compare(device: &Value, cli: &Value, path: &str, keys: &str, out: &mut Comparison) {
+    match (device, cli) {
+        (Value::Object(d), Value::Object(c)) => {
+            for (k, dv) in d {
+                let (p, kp) = (format!("{path}/{k}"), format!("{keys}/{k}"));
+                match c.get(k) {
+                    Some(cv) => compare(dv, cv, &p, &kp, out),
+                    None => {
+                        out.device_only.insert(kp);
+                    }
+                }
             }
-            for k in dk {
-                same(&d[&k], &h[&k], &format!("{path}/{k}"), differences);
+            for k in c.keys().filter(|k| !d.contains_key(*k)) {
+                out.cli_only.insert(format!("{keys}/{k}"));
             }
         }
-        (Value::Array(d), Value::Array(h)) if d.len() == h.len() => {
-            for (i, (a, b)) in d.iter().zip(h).enumerate() {
-                same(a, b, &format!("{path}/{i}"), differences);
+        (Value::Array(d), Value::Array(c)) if d.len() == c.len() => {
+            for (i, (a, b)) in d.iter().zip(c).enumerate() {
+                compare(a, b, &format!("{path}/{i}"), keys, out);
             }
         }
         (Value::Number(a), Value::Number(b)) => {
-            if a.as_f64() != b.as_f64() {
-                differences.push(format!("{path}: {a} vs {b}"));
+            out.values += 1;
+            // As `f32`, the type of every number of both: serde_json widens the
+            // device's to `f64` exactly, the CLI prints the shortest form.
+            let single = |n: &serde_json::Number| n.as_f64().map(|x| (x as f32).to_bits());
+            if single(a) != single(b) {
+                out.differences.push(format!("{path}: {a} vs {b}"));
             }
         }
-        (a, b) if a == b => {}
-        (a, b) => differences.push(format!("{path}: {a} vs {b}")),
+        (a, b) => {
+            out.values += 1;
+            if a != b {
+                out.differences.push(format!("{path}: {a} vs {b}"));
+            }
+        }
     }
 }
 
 #[test]
 fn shot_request_answers_as_the_cli() {
     let mut rng = ChaCha8Rng::seed_from_u64(2026);
-    let mut session = Session::new(Identity {
+    let mut session = Box::new(Session::new(Identity {
         firmware: "test",
         board: "host",
-    });
-    let mut out = cuesight_protocol::AnswerLine::new();
-    let (mut compared, mut both_refused, mut longest, mut worst) = (0, 0, 0, 0);
-    for index in 0..150 {
+    }));
+    let mut reader = Box::new(FrameReader::new());
+    let mut out = vec![0u8; MAX_FRAME];
+    let (mut compared, mut both_refused, mut values, mut longest) = (0, 0, 0, 0);
+    let (mut device_only, mut cli_only) = (BTreeSet::new(), BTreeSet::new());
+    for index in 0..SCENES {
         let body = random_body(&mut rng);
-        let line = json!({ "shot": body }).to_string();
-        session
-            .serve_line(line.as_bytes(), &mut out)
-            .expect("an answer");
-        longest = longest.max(out.len());
-        let answer: Value = serde_json::from_slice(&out).expect("answer JSON");
-        worst = worst.max(worst_case_length(&answer, out.len()));
-        match (answer.get("shot"), cli(&body, index)) {
-            (Some(device), Ok(host)) => {
-                let mut differences = Vec::new();
-                same(device, &host, "", &mut differences);
-                assert!(
-                    differences.is_empty(),
-                    "scene {index} {body}: {differences:#?}"
+        let shot: ShotRequest = serde_json::from_value(body.clone())
+            .unwrap_or_else(|e| panic!("scene {index} {body}: not a shot request: {e}"));
+        let frame = request_frame(index as u16, &Request::Shot(shot)).expect("encodes");
+        let mut answers = Vec::new();
+        for &byte in &frame {
+            if let Some(received) = reader.push(byte) {
+                let served = session.serve(received, &mut out);
+                let mut host = FrameReader::new();
+                answers.extend(
+                    out[..served.len]
+                        .iter()
+                        .filter_map(|&b| host.push(b).map(Incoming::from_received)),
                 );
+            }
+        }
+        assert_eq!(answers.len(), 1, "scene {index}: one answer");
+        if let Incoming::Frame(raw) = &answers[0] {
+            longest = longest.max(raw.len());
+        }
+        let answer = open_answer(&answers[0]).expect("a readable answer");
+        assert_eq!(usize::from(answer.seq), index);
+        match (answer.response, cli(&body, index)) {
+            (Response::Shot(device), Ok(host)) => {
+                let device = serde_json::to_value(&device).expect("the answer as JSON");
+                let mut found = Comparison::default();
+                compare(&device, &host, "", "", &mut found);
+                assert!(
+                    found.differences.is_empty(),
+                    "scene {index} {body}: {:#?}",
+                    found.differences
+                );
+                assert!(
+                    found.values >= 20,
+                    "scene {index}: only {} values in common",
+                    found.values
+                );
+                values += found.values;
+                device_only.extend(found.device_only);
+                cli_only.extend(found.cli_only);
                 compared += 1;
             }
-            (None, Err(_)) => both_refused += 1,
-            (Some(_), Err(message)) if message.contains("ghost-ball cut") => {
+            (Response::Error(_), Err(_)) => both_refused += 1,
+            (Response::Shot(_), Err(message)) if message.contains("ghost-ball cut") => {
                 // The CLI refuses a cut of 90° or more before solving (a clearer
                 // message); the device lets the solver say so.
                 both_refused += 1;
             }
             (device, host) => {
-                panic!("scene {index} {body}: device {device:?}, host {host:?} (answer {answer})")
+                panic!("scene {index} {body}: device {device:?}, CLI {host:?}")
             }
         }
     }
     println!(
-        "{compared} scenes answered identically, {both_refused} refused by both; longest \
-         answer {longest} bytes, {worst} with every number at its longest (buffer {MAX_ANSWER})"
+        "{compared} scenes answered with the same values ({values} compared), {both_refused} \
+         refused by both; longest answer frame {longest} raw bytes (limit {MAX_RAW})"
     );
+    println!("keys only the device's answer has: {device_only:?}");
+    println!("keys only the CLI's has: {cli_only:?}");
     assert!(compared >= 90, "only {compared} scenes compared");
-    assert!(worst < MAX_ANSWER, "a shot answer could need {worst} bytes");
-}
-
-/// The length of `answer` (`length` bytes as sent) if every number took 14 characters
-/// (an `f32` in ryu's shortest form is at most 14: `-1.2345678e-38`; `null` counts as
-/// one) and every model
-/// name were the longest (`kim-grip`).
-fn worst_case_length(answer: &Value, length: usize) -> usize {
-    fn walk(v: &Value, extra: &mut isize) {
-        match v {
-            Value::Number(n) => *extra += 14 - n.to_string().len() as isize,
-            // A `null` that could have been a number (`miss`, `error_estimate`, ...).
-            Value::Null => *extra += 10,
-            Value::String(s) if s.len() < 8 => *extra += 8 - s.len() as isize,
-            Value::Array(a) => a.iter().for_each(|x| walk(x, extra)),
-            Value::Object(o) => o.values().for_each(|x| walk(x, extra)),
-            _ => {}
-        }
-    }
-    let mut extra = 0;
-    walk(answer, &mut extra);
-    (length as isize + extra) as usize
 }
