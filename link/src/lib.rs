@@ -51,6 +51,6 @@ pub use request::{
     Collide, Defaults, Empty, Overrides, Request, ShotRequest, StrokeChunk, StrokeSetup,
 };
 pub use response::{CollideAnswer, Response, StrokeAnswer, VersionAnswer};
-pub use session::{Control, Identity, Served, Session, UNPROMPTED};
+pub use session::{next_seq, Control, Identity, Served, Session, UNPROMPTED};
 pub use shot::ShotAnswer;
 pub use upload::Upload;

@@ -15,8 +15,18 @@ use crate::response::{
 use crate::upload::{Step, Upload};
 
 /// The sequence number of a frame the device sends unprompted (its `version` at boot):
-/// not an answer to any request.
+/// not an answer to any request. Hosts never number a request with it ([`next_seq`]).
 pub const UNPROMPTED: u16 = u16::MAX;
+
+/// The number after `seq` in a host's count: 0, 1, ..., 0xFFFE, then 0 again
+/// ([`UNPROMPTED`] is skipped, so no answer can be taken for an unprompted frame).
+pub const fn next_seq(seq: u16) -> u16 {
+    if seq >= UNPROMPTED - 1 {
+        0
+    } else {
+        seq + 1
+    }
+}
 
 /// Who the device is, for `version`.
 #[derive(Clone, Copy, Debug)]
@@ -164,7 +174,7 @@ impl<U: BorrowMut<Upload>> Session<U> {
             self.last_seq = Some(seq);
             return Ok(());
         };
-        let expected = last.wrapping_add(1);
+        let expected = next_seq(last);
         if seq == expected {
             self.last_seq = Some(seq);
             Ok(())

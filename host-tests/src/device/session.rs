@@ -185,7 +185,7 @@ impl<T: Transport> Console<T> {
             Err(error) => return Ok(Reply::Garbled(error)),
         };
         self.link.send(&wire[..len])?;
-        self.next_seq = seq.wrapping_add(1);
+        self.next_seq = cuesight_link::next_seq(seq);
         let per_answer = Instant::now() + self.timeout;
         let deadline = self.deadline.map_or(per_answer, |d| d.min(per_answer));
         let waited = deadline.saturating_duration_since(Instant::now());
