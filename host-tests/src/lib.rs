@@ -1,5 +1,6 @@
 //! Host side of cuesight (std): the f64 first-principles reference solver and helpers
 //! shared by the CLI and the test suites.
+pub mod calibrate;
 pub mod cli;
 pub mod compare;
 pub mod device;

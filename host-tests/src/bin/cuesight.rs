@@ -5,7 +5,7 @@
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
-use cuesight::Params;
+use cuesight_host::calibrate::ParamsFile;
 use cuesight_host::cli;
 use cuesight_host::report;
 use cuesight_link::{Collide, ModelName};
@@ -45,6 +45,15 @@ enum Command {
     /// codes: 0 ok, 1 unexpected error answers (listed at the end), 2 usage, 3 link
     /// failure, 4 schema mismatch.
     Device(cuesight_host::device::Flags),
+    /// Fit the ball–ball friction law (and e*) to measured throw.
+    ///
+    /// Reads measured throw (JSON or CSV, see docs/calibration.md), fits
+    /// μ(v) = mu + mu_b·exp(−mu_c·v) (--fit mu-v, the default), a constant μ (mu) or
+    /// μ(v) and e* (mu-v-e) by weighted least squares, and prints the parameters with
+    /// uncertainties, per-point residuals and the RMS; --json prints one object that
+    /// `collide --params` and `shot --params` read. Exit codes: 0 ok, 1 bad data or no
+    /// convergence, 2 usage error.
+    Calibrate(cuesight_host::calibrate::Flags),
 }
 
 #[derive(Args)]
@@ -62,9 +71,14 @@ struct CollideArgs {
     /// Natural roll for the given velocity instead of --spin.
     #[arg(long)]
     roll: bool,
-    /// Ball–ball friction coefficient μ (with --mu-b/--mu-c: the high-speed limit a).
-    #[arg(long, default_value_t = Params::POOL.mu(), allow_negative_numbers = true)]
-    mu: f32,
+    /// Contact parameters from a JSON file (mu, mu_b, mu_c, restitution, mu_s, radius,
+    /// mass; what `cuesight calibrate --json` prints); flags given override it.
+    #[arg(long, value_name = "FILE")]
+    params: Option<std::path::PathBuf>,
+    /// Ball–ball friction coefficient μ (with --mu-b/--mu-c: the high-speed limit a)
+    /// [default: 0.05].
+    #[arg(long, allow_negative_numbers = true)]
+    mu: Option<f32>,
     /// Speed-dependent friction μ(v) = mu + B·exp(−C·v), v the slip speed (TP A.14):
     /// the amplitude B [default: 0, constant μ].
     #[arg(long, value_name = "B", allow_negative_numbers = true)]
@@ -72,18 +86,18 @@ struct CollideArgs {
     /// The decay rate C (s/m) of the speed-dependent friction [default: 0].
     #[arg(long, value_name = "C", allow_negative_numbers = true)]
     mu_c: Option<f32>,
-    /// Energetic coefficient of restitution e*.
-    #[arg(long, default_value_t = Params::POOL.restitution(), allow_negative_numbers = true)]
-    restitution: f32,
-    /// Object-ball/table static friction coefficient μ_s.
-    #[arg(long, default_value_t = Params::POOL.mu_s(), allow_negative_numbers = true)]
-    mu_s: f32,
-    /// Ball radius R (m).
-    #[arg(long, default_value_t = Params::POOL.radius(), allow_negative_numbers = true)]
-    radius: f32,
-    /// Ball mass M (kg).
-    #[arg(long, default_value_t = Params::POOL.mass(), allow_negative_numbers = true)]
-    mass: f32,
+    /// Energetic coefficient of restitution e* [default: 0.95].
+    #[arg(long, allow_negative_numbers = true)]
+    restitution: Option<f32>,
+    /// Object-ball/table static friction coefficient μ_s [default: 0.3].
+    #[arg(long, allow_negative_numbers = true)]
+    mu_s: Option<f32>,
+    /// Ball radius R (m) [default: 0.028575].
+    #[arg(long, allow_negative_numbers = true)]
+    radius: Option<f32>,
+    /// Ball mass M (kg) [default: 0.17].
+    #[arg(long, allow_negative_numbers = true)]
+    mass: Option<f32>,
     /// Model: one of the core's (ideal, kim, kim-grip, ...) or reference, the f64
     /// first-principles solver.
     #[arg(long, default_value = "kim-grip", value_parser = cli::parse_model)]
@@ -107,19 +121,31 @@ fn main() -> ExitCode {
         Command::Collide(args) => args,
         Command::Shot(flags) => return cuesight_host::shot_cli::main(&flags),
         Command::Device(flags) => return cuesight_host::device::main(&flags),
+        Command::Calibrate(flags) => return cuesight_host::calibrate::main(&flags),
+    };
+    // Flags override the --params file; what neither gives is the pool default.
+    let file = match &args.params {
+        Some(path) => match ParamsFile::read(path) {
+            Ok(file) => file,
+            Err(message) => {
+                eprintln!("error: {message}");
+                return ExitCode::from(cli::EXIT_USAGE);
+            }
+        },
+        None => ParamsFile::default(),
     };
     let request = Collide {
         speed: args.speed,
         cut: args.cut,
         spin: args.spin,
         roll: args.roll,
-        mu: Some(args.mu),
-        mu_b: args.mu_b,
-        mu_c: args.mu_c,
-        restitution: Some(args.restitution),
-        mu_s: Some(args.mu_s),
-        radius: Some(args.radius),
-        mass: Some(args.mass),
+        mu: args.mu.or(file.mu),
+        mu_b: args.mu_b.or(file.mu_b),
+        mu_c: args.mu_c.or(file.mu_c),
+        restitution: args.restitution.or(file.restitution),
+        mu_s: args.mu_s.or(file.mu_s),
+        radius: args.radius.or(file.radius),
+        mass: args.mass.or(file.mass),
         model: Some(args.model),
     };
     match cli::collide(&request) {

@@ -296,6 +296,11 @@ pub struct Flags {
     /// override it. See docs/shot-cli.md.
     #[arg(long, value_name = "FILE")]
     pub scene: Option<PathBuf>,
+    /// Contact parameters from a JSON file (mu, mu_b, mu_c, restitution, mu_s, radius,
+    /// mass; what `cuesight calibrate --json` prints). Its values override the scene
+    /// file's; flags override both.
+    #[arg(long, value_name = "FILE")]
+    pub params: Option<PathBuf>,
     /// Table preset [default: pool]; sets the ball size too.
     #[arg(long, value_enum)]
     pub table: Option<TablePreset>,
@@ -417,6 +422,19 @@ impl Request {
     /// As [`Request::resolve`], from an already parsed file.
     pub fn from_parts(file: &SceneFile, flags: &Flags) -> Result<Self, ShotError> {
         let invalid = |e: cuesight::Error| ShotError::invalid(e.to_string());
+        // `--params`: between the scene file and the flags.
+        let contact = match &flags.params {
+            Some(path) => crate::calibrate::ParamsFile::read(path).map_err(ShotError::usage)?,
+            None => crate::calibrate::ParamsFile::default(),
+        };
+        let file = &SceneFile {
+            radius: contact.radius.or(file.radius),
+            mass: contact.mass.or(file.mass),
+            mu: contact.mu.or(file.mu),
+            restitution: contact.restitution.or(file.restitution),
+            mu_s: contact.mu_s.or(file.mu_s),
+            ..file.clone()
+        };
         // Table and ball set.
         let (table_name, preset, custom) = match (flags.table, &file.table) {
             (Some(preset), _) => (preset.name(), Some(preset), None),
@@ -501,6 +519,15 @@ impl Request {
         let mut params = params;
         if let Some(mu) = flags.mu.or(file.mu) {
             params = params.with_mu(mu).map_err(invalid)?;
+        }
+        if contact.mu_b.is_some() || contact.mu_c.is_some() {
+            // μ(v) from the params file, its `a` the μ above.
+            let (b, c) = (contact.mu_b.unwrap_or(0.0), contact.mu_c.unwrap_or(0.0));
+            if b != 0.0 || c != 0.0 {
+                let law =
+                    cuesight::FrictionLaw::speed_dependent(params.mu(), b, c).map_err(invalid)?;
+                params = params.with_friction_law(law);
+            }
         }
         if let Some(e) = flags.restitution.or(file.restitution) {
             params = params.with_restitution(e).map_err(invalid)?;
