@@ -56,6 +56,9 @@ pub enum Aim {
 /// How a ball's path ends.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "lowercase"))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub enum End {
     /// It stops on the cloth.
     Rest,

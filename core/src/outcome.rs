@@ -21,6 +21,9 @@ pub struct BallState {
 /// How the ball–ball contact behaved during the impact.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "lowercase"))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub enum Regime {
     /// No friction acted (μ = 0, or the `Ideal` model).
     Frictionless,

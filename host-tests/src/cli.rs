@@ -109,14 +109,11 @@ pub fn collide(request: &Collide) -> Result<Report, CliError> {
         Some(model) => cuesight::collide(&prepared.params, &prepared.impact, model)?,
         None => reference_collide(&prepared.params, &prepared.impact)?,
     };
-    let input = InputEcho::new(
-        request.speed,
-        request.cut,
-        request.roll,
-        &prepared.params,
-        &prepared.impact,
-    );
-    Ok(Report::new(prepared.model, input, &outcome))
+    Ok(Report::new(
+        prepared.model,
+        InputEcho::of(request, &prepared),
+        &outcome,
+    ))
 }
 
 /// Run the reference solver, turning a panic into an error instead of a trace.

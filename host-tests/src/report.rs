@@ -102,15 +102,15 @@ impl fmt::Display for Text<'_> {
 mod tests {
     use super::*;
     use cuesight::{collide, Impact, Model, Params};
-    use cuesight_link::ModelName;
+    use cuesight_link::{Collide, Defaults, ModelName};
 
     fn stun_cut() -> Report {
-        let params = Params::POOL;
-        let impact = Impact::from_cut_degrees(2.0, 30.0, [0.0; 3]).unwrap();
-        let outcome = collide(&params, &impact, Model::KimGrip).unwrap();
+        let request = Collide::new(2.0, 30.0);
+        let prepared = request.prepare(&Defaults::POOL).unwrap();
+        let outcome = collide(&prepared.params, &prepared.impact, Model::KimGrip).unwrap();
         Report::new(
             ModelName::of(Model::KimGrip),
-            InputReport::new(2.0, 30.0, false, &params, &impact),
+            InputReport::of(&request, &prepared),
             &outcome,
         )
     }

@@ -72,14 +72,11 @@ pub fn encode<T: Serialize>(
     let body_room = rest
         .get_mut(..MAX_RAW - HEADER - CRC_LEN)
         .ok_or(too_large)?;
-    let body = postcard::serialize_with_flavor(
-        message,
-        Out {
-            buf: body_room,
-            len: 0,
-        },
-    )
-    .map_err(|_| too_large)?;
+    let writer = Out {
+        buf: body_room,
+        len: 0,
+    };
+    let body = postcard::serialize_with_flavor(message, writer).map_err(|_| too_large)?;
     let end = HEADER + body;
     let crc = CRC32.checksum(raw.get(..end).unwrap_or_default());
     let crc_slot = raw.get_mut(end..end + CRC_LEN).ok_or(too_large)?;
@@ -104,11 +101,8 @@ pub fn open(raw: &[u8]) -> Result<(Header, &[u8]), LinkError> {
     if CRC32.checksum(content) != u32::from_le_bytes(*crc) {
         return Err(LinkError::Frame(FrameFault::Crc { seq_as_read: seq }));
     }
-    let header = Header {
-        schema: u32::from_le_bytes([s0, s1, s2, s3]),
-        seq,
-    };
-    Ok((header, body))
+    let schema = u32::from_le_bytes([s0, s1, s2, s3]);
+    Ok((Header { schema, seq }, body))
 }
 
 /// Decodes a body as `T`; every byte must be used.

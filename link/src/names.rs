@@ -1,8 +1,14 @@
 //! Names on the wire: models, contact regimes, tables, how a path ends. Each is a
 //! plain enum (a varint in postcard, a lower-case string in JSON).
 
-use cuesight::{Model, Regime};
+use cuesight::Model;
 use serde::{Deserialize, Serialize};
+
+/// How a ball's path ends (`rest`, `pocket`, `cushion`): the core's own type.
+pub use cuesight::guidance::End as EndName;
+/// The contact regime of a collision (physics.md §1): the core's own type, which
+/// derives serde (`frictionless`, `sliding`, `gripping`).
+pub use cuesight::Regime as RegimeName;
 
 /// A collision model: one of the core's ([`Model`], `auto` with its default tolerance
 /// 1e-3), or the host's f64 reference solver.
@@ -42,13 +48,10 @@ impl ModelName {
 
     /// The JSON name (`kim-grip`).
     pub const fn name(self) -> &'static str {
-        match self {
-            ModelName::Reference => "reference",
-            ModelName::Auto => "auto",
-            other => match other.core() {
-                Some(model) => model.name(),
-                None => "reference",
-            },
+        match self.core() {
+            Some(Model::Auto { .. }) => "auto",
+            Some(model) => model.name(),
+            None => "reference",
         }
     }
 
@@ -78,41 +81,6 @@ impl ModelName {
     }
 }
 
-/// The contact regime of a collision (`physics.md` §1).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
-#[serde(rename_all = "lowercase")]
-pub enum RegimeName {
-    /// No friction acted.
-    Frictionless,
-    /// The contact slid for the whole impact.
-    Sliding,
-    /// The contact gripped (rolled without slipping) before the end.
-    Gripping,
-}
-
-impl RegimeName {
-    /// The JSON name.
-    pub const fn name(self) -> &'static str {
-        match self {
-            RegimeName::Frictionless => "frictionless",
-            RegimeName::Sliding => "sliding",
-            RegimeName::Gripping => "gripping",
-        }
-    }
-}
-
-impl From<Regime> for RegimeName {
-    fn from(regime: Regime) -> Self {
-        match regime {
-            Regime::Frictionless => RegimeName::Frictionless,
-            Regime::Sliding => RegimeName::Sliding,
-            Regime::Gripping => RegimeName::Gripping,
-        }
-    }
-}
-
 /// A table preset with its ball set.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -126,30 +94,6 @@ pub enum TableName {
     Snooker,
     /// Carom table (no pockets), carom balls.
     Carom,
-}
-
-impl TableName {
-    /// The JSON name.
-    pub const fn name(self) -> &'static str {
-        match self {
-            TableName::Pool => "pool",
-            TableName::Snooker => "snooker",
-            TableName::Carom => "carom",
-        }
-    }
-}
-
-/// How a ball's path ends (`cuesight::guidance::End`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
-#[serde(rename_all = "lowercase")]
-pub enum EndName {
-    /// It comes to rest on the table.
-    Rest,
-    /// It drops into a pocket.
-    Pocket,
-    /// It reaches a cushion (paths stop there).
-    Cushion,
 }
 
 /// Whether a `shot` played a given aim or solved for one.

@@ -3,6 +3,7 @@
 //! the field names of `cuesight collide` and `cuesight shot`) and the postcard body of a
 //! frame.
 
+use cuesight::strike::Cue;
 use cuesight::{FrictionLaw, Impact, Params};
 use heapless::Vec;
 use serde::{Deserialize, Serialize};
@@ -92,6 +93,16 @@ impl Defaults {
         params: Params::POOL,
         model: ModelName::KimGrip,
     };
+}
+
+/// The cue of a `stroke` or `shot`: its mass (kg) and tip restitution, each
+/// [`Cue::TYPICAL`]'s when absent; validated by the core (TP A.30's ranges).
+pub fn cue(mass: Option<f32>, tip_restitution: Option<f32>) -> cuesight::Result<Cue> {
+    let typical = Cue::TYPICAL;
+    Cue::new(
+        mass.unwrap_or(typical.mass()),
+        tip_restitution.unwrap_or(typical.tip_restitution()),
+    )
 }
 
 /// `(a, b, c)` of `μ(v) = a + b·exp(−c·v)`; a constant μ is `(μ, 0, 0)`.

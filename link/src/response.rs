@@ -2,13 +2,13 @@
 //! (m, s, kg, rad/s, N·s); angles in degrees in the fields ending in `_deg`. A
 //! [`CollideAnswer`] is also what `cuesight collide --json` prints.
 
-use cuesight::{BallState, Impact, Impulses, Outcome, Params, Vec3};
+use cuesight::{BallState, Impulses, Outcome, Params, Vec3};
 use heapless::String;
 use serde::{Deserialize, Serialize};
 
 use crate::error::LinkError;
 use crate::names::{ModelName, RegimeName};
-use crate::request::{law_components, Defaults};
+use crate::request::{law_components, Collide, Defaults, PreparedCollide};
 use crate::shot::ShotAnswer;
 
 /// Longest firmware or board name, in bytes.
@@ -87,14 +87,16 @@ pub struct InputEcho {
 }
 
 impl InputEcho {
-    /// The echo of a validated impact with `params`; `speed` and `cut_deg` as given.
-    pub fn new(speed: f32, cut_deg: f32, roll: bool, params: &Params, impact: &Impact) -> Self {
+    /// The echo of `request` as validated (`prepared`): speed and cut as given, the spin
+    /// and parameters as used.
+    pub fn of(request: &Collide, prepared: &PreparedCollide) -> Self {
+        let params = &prepared.params;
         let (mu, mu_b, mu_c) = law_components(params.friction_law());
         Self {
-            speed,
-            cut_deg,
-            spin: plain(impact.spin()),
-            roll,
+            speed: request.speed,
+            cut_deg: request.cut,
+            spin: plain(prepared.impact.spin()),
+            roll: request.roll,
             mu,
             mu_b,
             mu_c,
@@ -173,7 +175,7 @@ impl CollideAnswer {
         let impulses: &Impulses = &outcome.impulses;
         Self {
             model,
-            regime: outcome.regime.into(),
+            regime: outcome.regime,
             input,
             cue: BallAnswer::from(&outcome.cue_ball),
             object: BallAnswer::from(&outcome.object_ball),

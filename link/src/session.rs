@@ -231,14 +231,8 @@ impl<U: BorrowMut<Upload>> Session<U> {
             .core()
             .ok_or(LinkError::Unsupported(Unsupported::ReferenceModel))?;
         let outcome = collide(&prepared.params, &prepared.impact, model)?;
-        let input = InputEcho::new(
-            request.speed,
-            request.cut,
-            request.roll,
-            &prepared.params,
-            &prepared.impact,
-        );
-        let answer = CollideAnswer::new(prepared.model, input, &outcome);
+        let answer =
+            CollideAnswer::new(prepared.model, InputEcho::of(request, &prepared), &outcome);
         send(seq, &Response::Collide(answer), out)
     }
 

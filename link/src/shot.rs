@@ -165,9 +165,9 @@ pub struct TargetPart {
 mod serve {
     //! The device side: a `shot` request validated, guided and answered.
 
-    use cuesight::guidance::{guide, Aim, BallPath, End, Guidance, Target};
+    use cuesight::guidance::{guide, Aim, BallPath, Guidance, Target};
     use cuesight::shot::ShotSetup;
-    use cuesight::strike::{Cue, TipOffset};
+    use cuesight::strike::TipOffset;
     use cuesight::table::{BallSet, Scene, Table};
     use cuesight::travel::Cloth;
     use cuesight::Vec3;
@@ -175,7 +175,7 @@ mod serve {
     use super::*;
     use crate::error::{LinkError, Unsupported};
     use crate::names::TableName;
-    use crate::request::{Defaults, Overrides, ShotRequest};
+    use crate::request::{cue, Defaults, Overrides, ShotRequest};
     use crate::response::Response;
 
     /// `[x, y]` of a vector.
@@ -243,12 +243,7 @@ mod serve {
         let core_model = model
             .core()
             .ok_or(LinkError::Unsupported(Unsupported::ReferenceModel))?;
-        let cue = Cue::new(
-            request.cue_mass.unwrap_or(Cue::TYPICAL.mass()),
-            request
-                .tip_restitution
-                .unwrap_or(Cue::TYPICAL.tip_restitution()),
-        )?;
+        let cue = cue(request.cue_mass, request.tip_restitution)?;
         let cloth = Cloth::new(
             request.mu_cloth.unwrap_or(Cloth::TYPICAL.sliding()),
             request.mu_roll.unwrap_or(Cloth::TYPICAL.rolling()),
@@ -330,7 +325,7 @@ mod serve {
                 model,
                 model_used: ModelName::of(c.model_used),
                 error_estimate: c.error_estimate,
-                regime: c.regime.into(),
+                regime: c.regime,
                 throw_deg: c.throw_deg,
             }),
             cue_ball: ball(&g.cue_ball),
@@ -361,11 +356,7 @@ mod serve {
             rolling_direction_deg: b.rolling_direction_deg,
             stop_time: m.stop_time(),
             rest: xy(m.rest()),
-            end: match b.end.end {
-                End::Rest => EndName::Rest,
-                End::Pocket => EndName::Pocket,
-                End::Cushion => EndName::Cushion,
-            },
+            end: b.end.end,
             end_time: b.end.time,
             end_position: b.end_position,
             pocket: b.end.pocket.map(|p| p as u16),

@@ -2,7 +2,7 @@
 //! whole window checked for glitches, and only then estimated. Any fault drops the
 //! upload, so nothing half-uploaded is ever estimated.
 
-use cuesight::strike::{Cue, TipOffset};
+use cuesight::strike::TipOffset;
 use cuesight::Params;
 use cuesight_sensors::{
     estimate_raw, find_glitch, GlitchKind, StrokeConfig, StrokeError, ACCEL_MPS2_PER_LSB,
@@ -11,7 +11,7 @@ use heapless::Vec;
 
 use crate::error::{GlitchName, LinkError, UploadFault};
 use crate::limits::{MAX_CHUNKS, STROKE_CAPACITY};
-use crate::request::{StrokeChunk, StrokeSetup};
+use crate::request::{cue, StrokeChunk, StrokeSetup};
 use crate::response::{plain, StrokeAnswer, StrokeProgress};
 
 /// The stroke being uploaded: 10 KB of samples, all zero when new (see
@@ -58,75 +58,55 @@ impl Upload {
     }
 
     /// Takes one chunk. Errors drop the upload (the caller clears on every error).
-    pub(crate) fn push(&mut self, chunk: &StrokeChunk) -> Result<Step, UploadFault> {
-        let StrokeChunk {
-            stroke,
-            index,
-            count,
-            ..
-        } = *chunk;
-        if count == 0 || usize::from(count) > MAX_CHUNKS || index >= count {
-            return Err(UploadFault::BadChunk {
-                chunk: index,
-                count,
-            });
+    pub(crate) fn push(&mut self, request: &StrokeChunk) -> Result<Step, UploadFault> {
+        let (stroke, chunk, count) = (request.stroke, request.index, request.count);
+        if count == 0 || usize::from(count) > MAX_CHUNKS || chunk >= count {
+            return Err(UploadFault::BadChunk { chunk, count });
         }
-        if index == 0 {
+        if chunk == 0 {
             self.clear();
-            self.stroke = stroke;
-            self.count = count;
+            (self.stroke, self.count) = (stroke, count);
         } else if self.chunks.is_empty() || self.stroke != stroke {
-            return Err(UploadFault::NotStarted {
-                stroke,
-                chunk: index,
-            });
+            return Err(UploadFault::NotStarted { stroke, chunk });
         }
-        if count != self.count {
+        let expected = self.count;
+        if count != expected {
             return Err(UploadFault::CountChanged {
                 stroke,
                 count,
-                expected: self.count,
+                expected,
             });
         }
         let expected = self.chunks.len() as u16;
-        if index < expected {
-            return Err(UploadFault::Duplicate {
-                stroke,
-                chunk: index,
-            });
+        if chunk < expected {
+            return Err(UploadFault::Duplicate { stroke, chunk });
         }
-        if index > expected {
+        if chunk > expected {
             return Err(UploadFault::Missing {
                 stroke,
                 expected,
-                chunk: index,
+                chunk,
             });
         }
-        if chunk.samples.is_empty() {
-            return Err(UploadFault::Empty {
-                stroke,
-                chunk: index,
-            });
+        if request.samples.is_empty() {
+            return Err(UploadFault::Empty { stroke, chunk });
         }
-        let overflow = UploadFault::Overflow {
-            stroke,
-            chunk: index,
-        };
+        let overflow = UploadFault::Overflow { stroke, chunk };
         self.samples
-            .extend_from_slice(&chunk.samples)
+            .extend_from_slice(&request.samples)
             .map_err(|()| overflow)?;
-        self.chunks
-            .push(self.samples.len() as u16)
-            .map_err(|_| overflow)?;
-        if index + 1 < count {
+        let samples = self.samples.len() as u16;
+        self.chunks.push(samples).map_err(|_| overflow)?;
+        if chunk + 1 < count {
+            let chunks = chunk + 1;
             return Ok(Step::Held(StrokeProgress {
                 stroke,
-                chunks: index + 1,
+                chunks,
                 count,
-                samples: self.samples.len() as u16,
+                samples,
             }));
         }
-        chunk
+        request
             .setup
             .map(Step::Complete)
             .ok_or(UploadFault::NoSetup { stroke })
@@ -168,12 +148,7 @@ impl Upload {
                 value: glitch.value,
             }));
         }
-        let cue = Cue::new(
-            setup.cue_mass.unwrap_or(Cue::TYPICAL.mass()),
-            setup
-                .tip_restitution
-                .unwrap_or(Cue::TYPICAL.tip_restitution()),
-        )?;
+        let cue = cue(setup.cue_mass, setup.tip_restitution)?;
         let [side, height] = setup.tip_offset.unwrap_or([0.0; 2]);
         let tip = TipOffset::new(side, height)?;
         let mut config = StrokeConfig::new(setup.rate_hz);

@@ -25,7 +25,7 @@ fn schema_hash_is_the_schemas() {
     let hash = schema_hash();
     assert_eq!(
         SCHEMA_HASH, hash,
-        "the link's schema changed: set SCHEMA_HASH = 0x{hash:08x} in link/src/lib.rs"
+        "the link's schema changed: set SCHEMA_HASH = 0x{hash:08x} in link/src/limits.rs"
     );
 }
 
