@@ -141,15 +141,15 @@ mod tests {
     }
 
     #[test]
-    fn a_full_window_is_twenty_chunks_and_estimates() {
+    fn a_full_window_is_forty_chunks_and_estimates() {
         let stroke = synthetic_stroke_of(7, 3333.0, 2.5, Some(cuesight_link::STROKE_CAPACITY));
         assert_eq!(stroke.samples.len(), 5_000);
-        let chunks = stroke_chunks(&stroke, 9, 250);
-        assert_eq!(chunks.len(), 20);
+        let chunks = stroke_chunks(&stroke, 9, 125);
+        assert_eq!(chunks.len(), 40);
         for (i, chunk) in chunks.iter().enumerate() {
-            assert_eq!((chunk.stroke, chunk.index, chunk.count), (9, i as u16, 20));
-            assert_eq!(chunk.samples.len(), 250);
-            assert_eq!(chunk.setup.is_some(), i == 19);
+            assert_eq!((chunk.stroke, chunk.index, chunk.count), (9, i as u16, 40));
+            assert_eq!(chunk.samples.len(), 125);
+            assert_eq!(chunk.setup.is_some(), i == 39);
         }
         let scale = cuesight_sensors::ACCEL_MPS2_PER_LSB;
         let mut config = cuesight_sensors::StrokeConfig::new(stroke.rate_hz);

@@ -63,7 +63,7 @@ fn a_session_with_every_request_kind_passes() {
          {\"params\":{\"mu\":0.06}}\n{\"params\":{}}\n\
          !expect-error {\"collide\":{\"speed\":-1,\"cut\":30}}\n",
     );
-    for request in stroke_requests(&stroke, 250) {
+    for request in stroke_requests(&stroke, 125) {
         session.push_str(&serde_json::to_string(&request).unwrap());
         session.push('\n');
     }
@@ -74,7 +74,7 @@ fn a_session_with_every_request_kind_passes() {
     );
     let (tally, out, notes) = play_text(&session, ECHO);
     assert!(tally.passed(), "{tally:?}\n{out}\n{notes}");
-    assert_eq!(tally.sent, 5 + 20 + 2, "{out}");
+    assert_eq!(tally.sent, 5 + 40 + 2, "{out}");
     assert_eq!(tally.expected_errors, 1);
     assert!(tally.shut_down);
     assert!(out.contains("\n== heading\n"), "{out}");
@@ -84,7 +84,7 @@ fn a_session_with_every_request_kind_passes() {
         "{out}"
     );
     assert!(
-        out.contains("stroke 1: 19 of 20 chunks held, 4750 samples"),
+        out.contains("stroke 1: 39 of 40 chunks held, 4875 samples"),
         "{out}"
     );
     assert!(
