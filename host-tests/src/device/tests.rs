@@ -93,7 +93,7 @@ fn a_session_with_every_request_kind_passes() {
     );
     assert!(out.contains("< solved: aim "), "{out}");
     assert!(
-        out.contains("< session over: 28 requests answered, 1 with an error"),
+        out.contains("< session over: 48 requests answered, 1 with an error"),
         "{out}"
     );
     assert!(notes.is_empty(), "{notes}");
