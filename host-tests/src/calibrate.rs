@@ -74,7 +74,7 @@ pub struct Flags {
     #[arg(long)]
     pub cross_validate: bool,
     /// Give up after this many model evaluations (one per point and parameter set).
-    #[arg(long, value_name = "N", default_value_t = 20_000)]
+    #[arg(long, value_name = "N", default_value_t = 100_000)]
     pub max_evaluations: usize,
     /// Print one JSON object (parameters under collide's names, so it is a --params
     /// file) instead of the report.

@@ -221,7 +221,7 @@ impl FitOptions {
             solver: Solver::KimGrip,
             physics: Physics::pool(),
             default_uncertainty_deg: 1.0,
-            max_evaluations: 20_000,
+            max_evaluations: 100_000,
             progress: false,
         }
     }
