@@ -38,7 +38,6 @@ pub mod input;
 pub mod params_file;
 pub mod report;
 
-use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -159,23 +158,13 @@ pub fn run(flags: &Flags) -> Result<String, CalibrateError> {
 }
 
 /// Run `cuesight calibrate`: the report on stdout, errors as one line on stderr. Writes
-/// never panic: a closed stdout (broken pipe) drops the output and exits 0, any other
-/// write error (a full disk) is reported and exits 1.
+/// never panic ([`crate::cli::write_output`]): a closed stdout (broken pipe) drops the
+/// output and exits 0, any other write error (a full disk) is reported and exits 1.
 pub fn main(flags: &Flags) -> ExitCode {
     match run(flags) {
-        Ok(text) => {
-            let mut stdout = std::io::stdout().lock();
-            match writeln!(stdout, "{text}").and_then(|()| stdout.flush()) {
-                Ok(()) => ExitCode::SUCCESS,
-                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
-                Err(e) => {
-                    let _ = writeln!(std::io::stderr(), "error: writing the output: {e}");
-                    ExitCode::from(crate::cli::EXIT_INVALID)
-                }
-            }
-        }
+        Ok(text) => crate::cli::print_line(text),
         Err(error) => {
-            let _ = writeln!(std::io::stderr(), "error: {error}");
+            crate::cli::error_line(&error);
             ExitCode::from(error.code)
         }
     }

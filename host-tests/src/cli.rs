@@ -5,8 +5,16 @@
 //! validating constructors) or a solver failure; 2 a usage error (unparsable number,
 //! malformed `--spin`, unknown model, conflicting or missing options). Every error is
 //! reported as exactly one line on stderr, `error: <message>`, naming the field.
+//!
+//! Output ([`write_output`], [`output_error`]): every subcommand writes stdout through
+//! one place, which never panics. A closed stdout (a broken pipe: `| head`) ends the
+//! command quietly with exit 0; any other write error (a full disk) is one line on
+//! stderr, `error: writing the output: <cause>`, and exit 1. Lines on stderr
+//! ([`error_line`]) ignore a failed stderr.
 
 use core::fmt;
+use std::io::{self, Write};
+use std::process::ExitCode;
 
 use cuesight::{Impact, Outcome, Params};
 use cuesight_link::response::InputEcho;
@@ -18,6 +26,48 @@ use crate::report::Report;
 pub const EXIT_INVALID: u8 = 1;
 /// Exit code for a usage error (what clap rejects).
 pub const EXIT_USAGE: u8 = 2;
+
+/// Writes one line on stderr, `error: <message>`; a failed stderr is ignored (there is
+/// nowhere left to report it).
+pub fn error_line(message: impl fmt::Display) {
+    let _ = writeln!(io::stderr().lock(), "error: {message}");
+}
+
+/// The exit code for a failed write to stdout: 0 for a closed pipe (the reader has all
+/// it wanted), [`EXIT_INVALID`] for anything else.
+pub fn output_exit_code(error: &io::Error) -> u8 {
+    if error.kind() == io::ErrorKind::BrokenPipe {
+        0
+    } else {
+        EXIT_INVALID
+    }
+}
+
+/// Handles a failed write to stdout, the one place that does: a closed pipe is quiet,
+/// anything else is reported on stderr as `error: writing the output: <cause>`.
+/// Returns the exit code ([`output_exit_code`]).
+pub fn output_error(error: &io::Error) -> u8 {
+    let code = output_exit_code(error);
+    if code != 0 {
+        error_line(format_args!("writing the output: {error}"));
+    }
+    code
+}
+
+/// Runs `write` on the locked stdout and flushes it; the exit code is success, or what
+/// [`output_error`] makes of a failed write.
+pub fn write_output(write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> ExitCode {
+    let mut out = io::stdout().lock();
+    match write(&mut out).and_then(|()| out.flush()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => ExitCode::from(output_error(&error)),
+    }
+}
+
+/// [`write_output`] of `text` and a newline.
+pub fn print_line(text: impl fmt::Display) -> ExitCode {
+    write_output(|out| writeln!(out, "{text}"))
+}
 
 /// Parse a `--model` value: a core model (`ideal`, `kim`, `kim-grip`, ...) or
 /// `reference`, by the link's [`ModelName`] (the names a request's `model` takes).

@@ -196,28 +196,30 @@ fn check_cut(
 }
 
 /// Run `cuesight shot`: print the guidance (or JSON), write the SVG if asked; errors as
-/// one line on stderr.
+/// one line on stderr, output as [`crate::cli::write_output`] (never a panic).
 pub fn main(flags: &Flags) -> ExitCode {
     let played = match run(flags) {
         Ok(played) => played,
         Err(error) => {
-            eprintln!("error: {error}");
+            crate::cli::error_line(&error);
             return ExitCode::from(error.code);
         }
     };
     if let Some(path) = &flags.svg {
         if let Err(e) = std::fs::write(path, crate::svg::render(&played)) {
-            eprintln!("error: svg file {}: {e}", path.display());
+            crate::cli::error_line(format_args!("svg file {}: {e}", path.display()));
             return ExitCode::from(EXIT_INVALID);
         }
     }
-    if flags.json {
-        println!("{}", to_json(&played.report));
-    } else {
-        println!("{}", played.report);
-        if let Some(path) = &flags.svg {
-            println!("drawing: {}", path.display());
+    crate::cli::write_output(|out| {
+        if flags.json {
+            writeln!(out, "{}", to_json(&played.report))
+        } else {
+            writeln!(out, "{}", played.report)?;
+            match &flags.svg {
+                Some(path) => writeln!(out, "drawing: {}", path.display()),
+                None => Ok(()),
+            }
         }
-    }
-    ExitCode::SUCCESS
+    })
 }

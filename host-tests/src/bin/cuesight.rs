@@ -2,6 +2,7 @@
 //! resting object ball. The clap interface lives here; the logic in
 //! [`cuesight_host::cli`].
 
+use std::io::Write;
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
@@ -110,10 +111,16 @@ struct CollideArgs {
 fn main() -> ExitCode {
     let parsed = match Cli::try_parse() {
         Ok(parsed) => parsed,
-        // --help and --version print to stdout and exit 0.
-        Err(error) if !error.use_stderr() => error.exit(),
+        // --help and --version print to stdout and exit 0 (a failed write as any
+        // other output's).
+        Err(error) if !error.use_stderr() => {
+            return match error.print().and_then(|()| std::io::stdout().flush()) {
+                Ok(()) => ExitCode::from(u8::try_from(error.exit_code()).unwrap_or(0)),
+                Err(e) => ExitCode::from(cli::output_error(&e)),
+            };
+        }
         Err(error) => {
-            eprintln!("error: {}", cli::usage_error_message(&error));
+            cli::error_line(cli::usage_error_message(&error));
             return ExitCode::from(cli::EXIT_USAGE);
         }
     };
@@ -128,7 +135,7 @@ fn main() -> ExitCode {
         Some(path) => match ParamsFile::read(path) {
             Ok(file) => file,
             Err(message) => {
-                eprintln!("error: {message}");
+                cli::error_line(message);
                 return ExitCode::from(cli::EXIT_USAGE);
             }
         },
@@ -149,12 +156,11 @@ fn main() -> ExitCode {
         model: Some(args.model),
     };
     match cli::collide(&request) {
-        Ok(report) if args.json => println!("{}", report::to_json(&report)),
-        Ok(report) => println!("{}", report::Text(&report)),
+        Ok(report) if args.json => cli::print_line(report::to_json(&report)),
+        Ok(report) => cli::print_line(report::Text(&report)),
         Err(error) => {
-            eprintln!("error: {error}");
-            return ExitCode::from(error.exit_code());
+            cli::error_line(&error);
+            ExitCode::from(error.exit_code())
         }
     }
-    ExitCode::SUCCESS
 }

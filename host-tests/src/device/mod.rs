@@ -21,8 +21,10 @@
 //! marked expected; 1 the session failed (unexpected error answers, lines that are no
 //! request, unreadable answers: all listed on stderr after the whole session played);
 //! 2 usage (options, an unreadable session file); 3 the link failed (cannot open or
-//! connect, no answer in time, the device closed, QEMU failed) or the output closed;
-//! 4 the device speaks another schema.
+//! connect, no answer in time, the device closed, QEMU failed); 4 the device speaks
+//! another schema. The output as every subcommand's ([`crate::cli::output_error`]): a
+//! closed stdout ends the session quietly with 0, another write error (a full disk) is
+//! `error: writing the output: <cause>` and 1.
 
 pub mod session;
 pub mod text;
@@ -57,6 +59,7 @@ pub fn exit_code(error: &DeviceError) -> u8 {
     match error {
         DeviceError::Schema { .. } => EXIT_SCHEMA,
         DeviceError::Input(_) => EXIT_USAGE,
+        DeviceError::Output(e) => crate::cli::output_exit_code(e),
         _ => EXIT_LINK,
     }
 }
@@ -181,6 +184,7 @@ pub fn run(flags: &Flags) -> u8 {
     };
     match outcome {
         Ok(tally) => verdict(&tally),
+        Err(DeviceError::Output(e)) => crate::cli::output_error(&e),
         Err(error) => {
             note(format_args!("error: {error}"));
             exit_code(&error)
