@@ -36,6 +36,8 @@
 
 pub mod error;
 pub mod frame;
+#[cfg(feature = "shot")]
+mod guide;
 mod limits;
 pub mod names;
 pub mod request;

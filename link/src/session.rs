@@ -242,7 +242,7 @@ impl<U: BorrowMut<Upload>> Session<U> {
     #[inline(never)]
     fn shot(&self, request: &ShotRequest, seq: u16, out: &mut [u8]) -> Result<usize, LinkError> {
         // Read where it lies: moved out of its `Result`, the answer would be copied.
-        match crate::shot::answer(request, &self.defaults) {
+        match crate::guide::answer(request, &self.defaults) {
             Ok(ref response) => send(seq, response, out),
             Err(error) => Err(error),
         }
