@@ -3,17 +3,13 @@
 //! [`crate::shot::ShotAnswer`] (whose types are in `shot.rs`, shared with the host).
 
 use cuesight::guidance::{guide, Aim, BallPath, Guidance, Target};
-use cuesight::shot::ShotSetup;
-use cuesight::strike::TipOffset;
 use cuesight::table::{BallSet, Scene, Table};
-use cuesight::travel::Cloth;
-use cuesight::Vec3;
+use cuesight::{shot::ShotSetup, strike::TipOffset, travel::Cloth, Vec3};
 
 use crate::error::{LinkError, Unsupported};
 use crate::names::{ModelName, ShotMode, TableName};
 use crate::request::{cue, Defaults, Overrides, ShotRequest};
-use crate::response::Response;
-use crate::shot::{BallPart, ContactPart, ShotAnswer, SolvePart, StrokePart, TargetPart};
+use crate::{response::Response, shot::*};
 
 /// `[x, y]` of a vector.
 fn xy(v: Vec3) -> [f32; 2] {
