@@ -75,6 +75,10 @@ impl fmt::Display for AimError {
     }
 }
 
+/// The message of [`AimError::Invalid`] is the inner [`Error`]'s, so it reports no
+/// separate `source`.
+impl core::error::Error for AimError {}
+
 /// A solved aim.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -104,6 +108,38 @@ pub struct AimSolution {
 
 /// Solve the aim that pockets ball `object` in pocket `pocket` with a stroke of cue
 /// speed `cue_speed` and tip `tip`, using the model of `setup`.
+///
+/// ```
+/// use cuesight::aim::{solve_aim, AimError, TOLERANCE};
+/// use cuesight::shot::ShotSetup;
+/// use cuesight::strike::{Cue, TipOffset};
+/// use cuesight::table::{BallSet, Scene, Table};
+/// use cuesight::travel::Cloth;
+/// use cuesight::{Model, Params};
+///
+/// let r = BallSet::POOL.radius;
+/// let mut scene = Scene::new(Table::pool(), r, [1.5, 0.3])?;
+/// let object = scene.add_ball([1.9, 0.9])?;
+/// let setup = ShotSetup {
+///     params: Params::POOL,
+///     cue: Cue::TYPICAL,
+///     cloth: Cloth::TYPICAL,
+///     model: Model::KimGrip,
+/// };
+/// let tip = TipOffset::from_radius_fraction(0.0, 0.3, r)?; // some follow
+/// let aim = solve_aim(&scene, object, 3, 2.0, tip, &setup)?;
+/// assert!(aim.residual.abs() <= TOLERANCE);
+/// // Throw carries the object ball off the line of centres: the ghost-ball aim misses
+/// // and the solved aim differs from it by a fraction of a degree.
+/// assert!(aim.correction_deg.abs() > 0.05 && aim.correction_deg.abs() < 1.0);
+/// println!("aim {:+.2} deg from the ghost ball ({:.1} mm)", aim.correction_deg, aim.correction_mm);
+///
+/// // A pocket the table does not have is an invalid input, named.
+/// let error = solve_aim(&scene, object, 6, 2.0, tip, &setup).unwrap_err();
+/// assert!(matches!(error, AimError::Invalid(_)));
+/// assert_eq!(error.to_string(), "pocket = 6 is outside an index of a pocket of the table");
+/// # Ok::<(), AimError>(())
+/// ```
 pub fn solve_aim(
     scene: &Scene,
     object: usize,

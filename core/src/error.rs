@@ -216,6 +216,25 @@ impl fmt::Display for Error {
     }
 }
 
+/// `Box<dyn std::error::Error>` and other error-handling code take it (`?` converts it).
+///
+/// ```
+/// use cuesight::{collide, Impact, Model, Params};
+///
+/// fn throw_deg(mu: f32) -> Result<f32, Box<dyn std::error::Error>> {
+///     let params = Params::POOL.with_mu(mu)?;
+///     let impact = Impact::from_cut_degrees(2.0, 30.0, [0.0, 40.0, 0.0])?;
+///     Ok(collide(&params, &impact, Model::KimGrip)?.throw_angle_deg())
+/// }
+///
+/// assert!(throw_deg(0.06).is_ok());
+/// let error = throw_deg(-0.1).unwrap_err();
+/// assert_eq!(error.to_string(), "mu = -0.1 is outside [0, 1]");
+/// let error = error.downcast::<cuesight::Error>().unwrap();
+/// assert_eq!(error.field(), Some(cuesight::Field::Friction));
+/// ```
+impl core::error::Error for Error {}
+
 /// Check `value` is finite and within `[min, max]` (or `(min, max]` when
 /// `min_exclusive`).
 pub(crate) fn check(

@@ -314,6 +314,38 @@ pub fn mouth_miss(motion: &Motion, table: &Table, pocket: usize) -> Option<f32> 
 ///
 /// Errors: an invalid input ([`AimError::Invalid`], with the field), or, when solving,
 /// why there is no aim.
+///
+/// ```
+/// use cuesight::guidance::{guide, Aim, End, Target};
+/// use cuesight::shot::ShotSetup;
+/// use cuesight::strike::{Cue, TipOffset};
+/// use cuesight::table::{BallSet, Scene, Table};
+/// use cuesight::travel::Cloth;
+/// use cuesight::{Model, Params};
+///
+/// let mut scene = Scene::new(Table::pool(), BallSet::POOL.radius, [1.5, 0.3])?;
+/// let object = scene.add_ball([1.9, 0.9])?;
+/// let setup = ShotSetup {
+///     params: Params::POOL,
+///     cue: Cue::TYPICAL,
+///     cloth: Cloth::TYPICAL,
+///     model: Model::Auto { tolerance: 1e-3 },
+/// };
+/// // Solve the aim that drops the object ball in the far corner pocket (3), then play it.
+/// let target = Target { object, pocket: 3 };
+/// let g = guide(&scene, 2.0, TipOffset::CENTRE, Aim::Solve(target), &setup)?;
+/// let solved = g.solve.unwrap();
+/// assert!(solved.solution.correction_deg.abs() > 0.0); // throw moves the aim
+/// assert_eq!(g.object_ball.unwrap().end.end, End::Pocket);
+/// assert!(g.target.unwrap().pocketed);
+///
+/// // The naive ghost-ball aim, played as given: throw makes it miss by some millimetres.
+/// let naive = Aim::Degrees { aim_deg: solved.naive_aim_deg, target: Some(target) };
+/// let played = guide(&scene, 2.0, TipOffset::CENTRE, naive, &setup)?;
+/// let miss = played.target.unwrap().miss.unwrap();
+/// assert!(miss.abs() > 1e-3);
+/// # Ok::<(), cuesight::aim::AimError>(())
+/// ```
 pub fn guide(
     scene: &Scene,
     cue_speed: f32,

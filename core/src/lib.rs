@@ -63,5 +63,12 @@ pub use params::Params;
 pub use real::Real;
 pub use vector::Vec3;
 
+/// The README's code blocks, compiled and run as doctests (`cargo test -p cuesight
+/// --doc`): its library example cannot go stale. Only under `cfg(doctest)`, so the
+/// packaged crate, which has no README of the workspace, builds without it.
+#[cfg(doctest)]
+#[doc = include_str!("../../README.md")]
+pub struct ReadmeDoctests;
+
 /// Moment-of-inertia factor of a uniform solid sphere, `I = ν M R²` (seed eq. (10)).
 pub const NU: f32 = 0.4;

@@ -25,7 +25,7 @@ pub enum Model {
     /// the seed's physics, whose object-ball table friction points along `−x` (eq. (7)):
     /// up to ~0.4 % of U from the first-principles result when the object ball is pressed
     /// (topspin), within quadrature error otherwise. Ignores `μ_ct`, as the seed does.
-    /// May return [`Error::NumericalFailure`] if a root solve fails (never observed).
+    /// May return [`Error::NumericalFailure`](crate::Error::NumericalFailure) if a root solve fails (never observed).
     SeedExact,
     /// The full rigid-body impact integrated in fixed memory (`exact` module): the
     /// reference solver's physics at a fixed step count. Slowest, most accurate.
@@ -33,6 +33,27 @@ pub enum Model {
     /// The cheapest of the tiers above whose a-priori error estimate
     /// ([`crate::error_estimate`]) is at most `tolerance`, in `max(|Δv|, R|Δω|) / U`
     /// (e.g. 1e-3 for 0.1 % of the cue-ball speed); `Exact` if none is.
+    ///
+    /// ```
+    /// use cuesight::{collide, error_estimate, select_model, Impact, Model, Params};
+    ///
+    /// let params = Params::POOL;
+    /// let impact = Impact::from_cut_degrees(2.0, 30.0, [0.0, 40.0, 0.0])?;
+    /// // Which tier `Auto` evaluates, and that tier's estimate.
+    /// let (tier, estimate) = select_model(&params, &impact, 1e-3);
+    /// assert!(estimate <= 1e-3);
+    /// assert_eq!(estimate, error_estimate(&params, &impact, tier));
+    /// // `Auto` gives exactly that tier's outcome.
+    /// let auto = collide(&params, &impact, Model::Auto { tolerance: 1e-3 })?;
+    /// assert_eq!(auto, collide(&params, &impact, tier)?);
+    /// // A looser tolerance never picks a dearer tier.
+    /// let (loose, _) = select_model(&params, &impact, 0.1);
+    /// let rank = |m: Model| Model::ALL.iter().position(|&x| x == m);
+    /// assert!(rank(loose) <= rank(tier));
+    /// // The tolerance is checked.
+    /// assert!(collide(&params, &impact, Model::Auto { tolerance: 0.0 }).is_err());
+    /// # Ok::<(), cuesight::Error>(())
+    /// ```
     Auto {
         /// Accepted relative error, in `(0, 1]`.
         tolerance: f32,
@@ -73,9 +94,27 @@ impl Model {
 /// Predict the outcome of the cue ball described by `impact` hitting a resting object
 /// ball, with `params`, using `model`, evaluated in `f32`.
 ///
-/// Inputs are validated by their constructors, so the only error is
-/// [`Error::NumericalFailure`], a guard that turns any non-finite result into an
-/// error instead of a NaN (never observed on the test grids).
+/// Inputs are validated by their constructors, so the errors are an `Auto` tolerance
+/// outside `(0, 1]` ([`Field::Tolerance`]) and
+/// [`Error::NumericalFailure`](crate::Error::NumericalFailure), a guard that turns any
+/// non-finite result into an error instead of a NaN (never observed on the test grids).
+///
+/// ```
+/// use cuesight::{collide, Impact, Model, Params, Regime};
+///
+/// // The README's shot: 2 m/s, cut 30°, 40 rad/s of topspin, μ = 0.06.
+/// let params = Params::POOL.with_mu(0.06)?;
+/// let impact = Impact::from_cut_degrees(2.0, 30.0, [0.0, 40.0, 0.0])?;
+/// let out = collide(&params, &impact, Model::KimGrip)?;
+/// assert_eq!(out.regime, Regime::Sliding);
+/// assert!((out.throw_angle_deg() - 2.17).abs() < 0.01); // object ball thrown 2.17°
+/// assert!(out.cue_ball.velocity.z > 0.0); // the cue ball hops
+///
+/// // Every tier answers the same question; Ideal has no throw at all.
+/// let ideal = collide(&params, &impact, Model::Ideal)?;
+/// assert!(ideal.throw_angle_deg().abs() < 1e-4);
+/// # Ok::<(), cuesight::Error>(())
+/// ```
 pub fn collide(params: &Params, impact: &Impact, model: Model) -> Result<Outcome> {
     collide_in::<f32>(params, impact, model)
 }

@@ -188,6 +188,31 @@ impl Strike {
 /// Errors: `cue_speed` not finite or outside `(0, 20]` m/s ([`Field::CueSpeed`]); `|b|`
 /// above `0.5 R` ([`Field::TipOffset`], value `|b|` in metres). Never panics and never
 /// returns a non-finite value.
+///
+/// ```
+/// use cuesight::strike::{strike, Cue, TipOffset};
+/// use cuesight::{Field, Params};
+///
+/// let params = Params::POOL;
+/// let r = params.radius();
+/// // A 2 m/s stroke, the tip 2R/5 above centre: the ball leaves in natural roll.
+/// let follow = TipOffset::from_radius_fraction(0.0, 0.4, r)?;
+/// let hit = strike(&params, &Cue::TYPICAL, follow, 2.0)?;
+/// assert!((hit.spin.y * r - hit.speed).abs() < 1e-5 * hit.speed); // ω_y = v / R
+/// assert_eq!(hit.spin.z, 0.0);
+/// // Right english spins the ball counter-clockwise seen from above.
+/// let right = TipOffset::from_radius_fraction(0.3, 0.0, r)?;
+/// assert!(strike(&params, &Cue::TYPICAL, right, 2.0)?.spin.z > 0.0);
+/// // Into the collision frame for a 30° cut, then any model.
+/// let impact = hit.to_impact(30f32.to_radians())?;
+/// let out = cuesight::collide(&params, &impact, cuesight::Model::KimGrip)?;
+/// assert!(out.throw_angle_deg() > 0.0);
+/// // Miscues are refused: the tip beyond R/2 of the centre.
+/// let miscue = TipOffset::from_radius_fraction(0.0, 0.6, r)?;
+/// let error = strike(&params, &Cue::TYPICAL, miscue, 2.0).unwrap_err();
+/// assert_eq!(error.field(), Some(Field::TipOffset));
+/// # Ok::<(), cuesight::Error>(())
+/// ```
 pub fn strike(params: &Params, cue: &Cue, tip: TipOffset, cue_speed: f32) -> Result<Strike> {
     let cue_speed = check(Field::CueSpeed, cue_speed, 0.0, MAX_CUE_SPEED, true)?;
     let radius = params.radius();

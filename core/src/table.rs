@@ -224,6 +224,32 @@ const fn mirrored(width: f32, y: f32) -> (f32, f32) {
 }
 
 /// Balls at rest on a table: index 0 is the cue ball.
+///
+/// ```
+/// use cuesight::table::{BallSet, Scene, Table, MAX_BALLS};
+/// use cuesight::{Field, Vec3};
+///
+/// let r = BallSet::POOL.radius;
+/// let mut scene = Scene::new(Table::pool(), r, [0.635, 0.635])?; // cue ball: index 0
+/// let one = scene.add_ball([1.905, 0.635])?; // on the foot spot
+/// assert_eq!(one, 1);
+/// assert_eq!(scene.balls().len(), 2);
+/// // Straight down the table the cue ball touches ball 1 after 1.27 m − 2R.
+/// let d = scene.contact_distance(Vec3::new(1.0, 0.0, 0.0), one).unwrap();
+/// assert!((d - (1.27 - 2.0 * r)).abs() < 1e-5);
+///
+/// // Every placement is checked: off the cloth, overlapping, or one too many.
+/// let off = scene.add_ball([3.0, 0.635]).unwrap_err();
+/// assert_eq!(off.field(), Some(Field::Position));
+/// let overlap = scene.add_ball([1.905 + r, 0.635]).unwrap_err();
+/// assert_eq!(overlap.field(), Some(Field::Spacing));
+/// for i in 2..MAX_BALLS {
+///     scene.add_ball([0.1 + 0.15 * i as f32, 1.0])?;
+/// }
+/// let full = scene.add_ball([0.2, 0.2]).unwrap_err();
+/// assert_eq!(full.field(), Some(Field::BallCount));
+/// # Ok::<(), cuesight::Error>(())
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
     table: Table,
