@@ -27,6 +27,27 @@ pub const EXIT_INVALID: u8 = 1;
 /// Exit code for a usage error (what clap rejects).
 pub const EXIT_USAGE: u8 = 2;
 
+/// The most any input file may hold (scene, params, throw, session): 1 MiB.
+pub const MAX_INPUT_BYTES: u64 = 1 << 20;
+
+/// Reads `path` whole, at most [`MAX_INPUT_BYTES`]: a larger file, or a source without
+/// end (`/dev/zero`), is refused after reading one byte more than the limit. The error
+/// is the cause alone (the caller names the file).
+pub fn read_input(path: &std::path::Path) -> Result<Vec<u8>, String> {
+    use std::io::Read;
+    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    let mut bytes = Vec::new();
+    file.take(MAX_INPUT_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| e.to_string())?;
+    if bytes.len() as u64 > MAX_INPUT_BYTES {
+        return Err(format!(
+            "larger than {MAX_INPUT_BYTES} bytes (1 MiB), refused"
+        ));
+    }
+    Ok(bytes)
+}
+
 /// Writes one line on stderr, `error: <message>`; a failed stderr is ignored (there is
 /// nowhere left to report it).
 pub fn error_line(message: impl fmt::Display) {

@@ -5,8 +5,9 @@
 //! Exit codes, as for `cuesight collide`: 0 success; 1 an invalid value (off the table,
 //! overlapping balls, too many balls, no such ball or pocket, a physical parameter out of
 //! range), no aim found, or the SVG file not written; 2 a usage error (unreadable or
-//! malformed scene file, unknown key or name, unparsable number, missing input). Every
-//! error is one line on stderr, `error: <message>`.
+//! malformed scene file, a scene or params file over 1 MiB, unknown key or name,
+//! unparsable number, missing input). Every error is one line on stderr,
+//! `error: <message>`.
 
 pub mod input;
 pub mod report;

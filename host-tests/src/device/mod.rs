@@ -20,18 +20,17 @@
 //! Exit codes ([`EXIT_OK`] ...): 0 every request answered, and no error that was not
 //! marked expected; 1 the session failed (unexpected error answers, lines that are no
 //! request, unreadable answers: all listed on stderr after the whole session played);
-//! 2 usage (options, an unreadable session file); 3 the link failed (cannot open or
-//! connect, no answer in time, the device closed, QEMU failed); 4 the device speaks
-//! another schema. The output as every subcommand's ([`crate::cli::output_error`]): a
-//! closed stdout ends the session quietly with 0, another write error (a full disk) is
-//! `error: writing the output: <cause>` and 1.
+//! 2 usage (options, an unreadable session file, one over 1 MiB, a line over 64 KiB);
+//! 3 the link failed (cannot open or connect, no answer in time, the device closed,
+//! QEMU failed); 4 the device speaks another schema. The output as every subcommand's
+//! ([`crate::cli::output_error`]): a closed stdout ends the session quietly with 0,
+//! another write error (a full disk) is `error: writing the output: <cause>` and 1.
 
 pub mod session;
 pub mod text;
 pub mod transport;
 
-use std::fs::File;
-use std::io::{self, BufRead, BufReader, IsTerminal, Write};
+use std::io::{self, BufRead, IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Duration;
@@ -124,8 +123,10 @@ pub fn run(flags: &Flags) -> u8 {
     let stdin = io::stdin();
     let interactive = flags.session.is_none() && stdin.is_terminal();
     let input: Box<dyn BufRead> = match &flags.session {
-        Some(path) => match File::open(path) {
-            Ok(file) => Box::new(BufReader::new(file)),
+        // A session file is read whole first, at most 1 MiB; stdin line by line, each
+        // line at most 64 KiB (session::MAX_LINE_BYTES).
+        Some(path) => match crate::cli::read_input(path) {
+            Ok(bytes) => Box::new(io::Cursor::new(bytes)),
             Err(e) => {
                 note(format_args!("error: cannot read {}: {e}", path.display()));
                 return EXIT_USAGE;

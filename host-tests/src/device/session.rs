@@ -17,7 +17,7 @@
 //! listing them ([`Tally::unexpected`]).
 
 use std::fmt;
-use std::io::{self, BufRead, Write};
+use std::io::{self, BufRead, Read, Write};
 use std::time::{Duration, Instant};
 
 use cuesight_link::frame::MAX_FRAME;
@@ -318,6 +318,58 @@ pub fn shorten(line: &str) -> String {
     }
 }
 
+/// The longest line the console reads, its end not counted: 64 KiB (a request that
+/// fits a frame is under a few KiB of JSON).
+pub const MAX_LINE_BYTES: usize = 64 << 10;
+
+/// The lines of `input` as [`BufRead::lines`] gives them (without `\n` or `\r\n`), but
+/// none longer than [`MAX_LINE_BYTES`]: a longer one (or bytes without end and without a
+/// newline, `/dev/zero`) is an [`io::ErrorKind::InvalidData`] error naming the line and
+/// the bound, after reading no more than the bound and two bytes.
+pub fn bounded_lines(input: impl BufRead) -> impl Iterator<Item = io::Result<String>> {
+    let mut input = input;
+    let mut buf = Vec::new();
+    let mut number = 0usize;
+    let mut failed = false;
+    std::iter::from_fn(move || {
+        if failed {
+            return None;
+        }
+        buf.clear();
+        number += 1;
+        let limit = MAX_LINE_BYTES as u64 + 2;
+        let line = match (&mut input).take(limit).read_until(b'\n', &mut buf) {
+            Ok(0) => return None,
+            Ok(_) => {
+                if buf.last() == Some(&b'\n') {
+                    buf.pop();
+                    if buf.last() == Some(&b'\r') {
+                        buf.pop();
+                    }
+                }
+                if buf.len() > MAX_LINE_BYTES {
+                    Err(io::Error::new(
+                        io::ErrorKind::InvalidData,
+                        format!(
+                            "line {number} is longer than {MAX_LINE_BYTES} bytes (64 KiB), refused"
+                        ),
+                    ))
+                } else {
+                    String::from_utf8(std::mem::take(&mut buf)).map_err(|_| {
+                        io::Error::new(
+                            io::ErrorKind::InvalidData,
+                            "stream did not contain valid UTF-8",
+                        )
+                    })
+                }
+            }
+            Err(e) => Err(e),
+        };
+        failed = line.is_err();
+        Some(line)
+    })
+}
+
 /// Writes a line to `out`, a closed pipe being an [`DeviceError::Output`].
 fn put(out: &mut dyn Write, text: fmt::Arguments<'_>) -> Result<(), DeviceError> {
     out.write_fmt(text)
@@ -337,7 +389,7 @@ pub fn play<T: Transport>(
     show: Show,
 ) -> Result<Tally, DeviceError> {
     let mut tally = Tally::default();
-    for (index, line) in input.lines().enumerate() {
+    for (index, line) in bounded_lines(input).enumerate() {
         let number = index + 1;
         let line = line.map_err(DeviceError::Input)?;
         if tally.shut_down {

@@ -227,7 +227,10 @@ impl SceneFile {
                 )))
             }
         };
-        let text = std::fs::read_to_string(path)
+        let text = crate::cli::read_input(path)
+            .and_then(|bytes| {
+                String::from_utf8(bytes).map_err(|_| "stream did not contain valid UTF-8".into())
+            })
             .map_err(|e| ShotError::usage(format!("scene file {shown}: {e}")))?;
         let parsed = if is_toml {
             Self::from_toml(&text)
