@@ -1,6 +1,10 @@
 //! Typed errors: everything the device can refuse, as data. The device never formats
 //! text; the host console turns these into sentences (`cuesight device`), as defmt does
-//! for logs.
+//! for logs. [`LinkError`] also implements `Display` (a short line, its parts in their
+//! `Debug` form) and `core::error::Error`, for host programs that use the codec with
+//! `?`; the firmware never calls them, so they are not in its image.
+
+use core::fmt;
 
 use cuesight::aim::AimError;
 use cuesight_sensors::{ConfigField, StrokeError};
@@ -41,6 +45,43 @@ pub enum LinkError {
     /// The answer did not fit a frame (a bug: sizes are tested).
     AnswerTooLarge,
 }
+
+impl fmt::Display for LinkError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            LinkError::Frame(fault) => write!(f, "unreadable frame: {fault:?}"),
+            LinkError::SchemaMismatch { device, host } => write!(
+                f,
+                "schema mismatch: device {device:#010x}, host {host:#010x}"
+            ),
+            LinkError::Sequence(fault) => write!(f, "frame out of sequence: {fault:?}"),
+            LinkError::Invalid(error) => write!(f, "{error}"),
+            LinkError::SpinAndRoll => f.write_str("spin and roll were both given"),
+            LinkError::MissingAim => f.write_str("shot: neither aim nor pocket given"),
+            LinkError::Unsupported(what) => write!(f, "unsupported: {what:?}"),
+            LinkError::NoAim(why) => write!(f, "no aim: {why:?}"),
+            LinkError::Stroke(why) => write!(f, "stroke rejected: {why:?}"),
+            LinkError::Upload(fault) => write!(f, "stroke upload dropped: {fault:?}"),
+            LinkError::AnswerTooLarge => f.write_str("the answer did not fit a frame"),
+        }
+    }
+}
+
+/// The message of [`LinkError::Invalid`] is the core error's, so no `source` is
+/// reported separately.
+///
+/// ```
+/// use cuesight_link::frame;
+///
+/// fn read(raw: &[u8]) -> Result<u16, Box<dyn std::error::Error>> {
+///     let (header, _body) = frame::open(raw)?;
+///     Ok(header.seq)
+/// }
+///
+/// let error = read(&[1, 2, 3]).unwrap_err();
+/// assert_eq!(error.to_string(), "unreadable frame: Short { length: 3 }");
+/// ```
+impl core::error::Error for LinkError {}
 
 /// What is wrong with a frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]

@@ -310,6 +310,17 @@ impl fmt::Display for StrokeError {
     }
 }
 
+/// ```
+/// use cuesight_sensors::{estimate, StrokeConfig};
+///
+/// fn cue_speed(samples: &[f32]) -> Result<f32, Box<dyn std::error::Error>> {
+///     Ok(estimate(samples, &StrokeConfig::new(1000.0))?.cue_speed)
+/// }
+///
+/// // 10 ms of samples at 1 kHz: not even the rest before the stroke.
+/// let error = cue_speed(&[0.0; 10]).unwrap_err();
+/// assert!(error.to_string().starts_with("window too short: 10 samples"));
+/// ```
 impl core::error::Error for StrokeError {}
 
 impl From<cuesight::Error> for StrokeError {
