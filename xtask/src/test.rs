@@ -43,6 +43,10 @@ const STEPS: &[Step] = &[
         action: || cargo_at_root(&["test", "--workspace"]),
     },
     Step {
+        title: "host: rustdoc, warnings denied",
+        action: rustdoc,
+    },
+    Step {
         title: "core: build for thumbv7em-none-eabihf",
         action: || {
             cargo_at_root(&[
@@ -100,6 +104,17 @@ const STEPS: &[Step] = &[
         action: crate::fuzz::check,
     },
 ];
+
+/// `cargo doc --no-deps --workspace` with every rustdoc warning an error (broken
+/// intra-doc links, bad code-block attributes, ...). The doctests themselves run in
+/// "host: tests".
+fn rustdoc() -> Result {
+    cmd::run(
+        cmd::cargo()
+            .args(["doc", "--no-deps", "--workspace"])
+            .env("RUSTDOCFLAGS", "-D warnings"),
+    )
+}
 
 /// The link-time no-panic proof: the shipped configuration (release profile: opt-level
 /// "z" with the physics at "s", fat LTO, one codegen unit; default features: the QEMU
