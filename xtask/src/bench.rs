@@ -14,7 +14,9 @@
 //! 3. max and RMS error against the reference on the whole grid, of the outcomes the
 //!    firmware itself printed (`host-tests/benches/tradeoff.rs`).
 //!
-//! Results: `target/bench/tradeoff.json`, `docs/tradeoff.md`, `docs/tradeoff.svg`.
+//! Results: `target/bench/tradeoff.json`, and the report `tradeoff.md` with its plot
+//! `tradeoff.svg` beside it in `target/bench/`; with `--update-docs` the report and the
+//! plot replace the tracked `docs/tradeoff.md` and `docs/tradeoff.svg` instead.
 
 mod disasm;
 mod firmware;
@@ -47,6 +49,10 @@ pub struct Args {
     /// Skip the criterion timings (host ns and the reference ratio are left empty).
     #[arg(long)]
     no_host_timing: bool,
+    /// Write the report and the plot over the tracked docs/tradeoff.md and
+    /// docs/tradeoff.svg (without it they go to target/bench/, beside tradeoff.json).
+    #[arg(long)]
+    update_docs: bool,
 }
 
 /// Where the measurements go: `target/bench/` (honours `CARGO_TARGET_DIR`).
@@ -54,7 +60,18 @@ fn out_dir() -> PathBuf {
     host::target_dir().join("bench")
 }
 
-/// Runs the whole benchmark and regenerates the documents.
+/// Where the report and its plot go: the tracked `docs/` only when asked
+/// (`--update-docs`), otherwise `target/bench/` beside the JSON.
+fn report_dir(update_docs: bool) -> PathBuf {
+    if update_docs {
+        cmd::root().join("docs")
+    } else {
+        out_dir()
+    }
+}
+
+/// Runs the whole benchmark and writes the report (over the documents with
+/// `--update-docs`).
 pub fn run(args: &Args) -> Result {
     let started = Instant::now();
     if args.counted == 0 || args.counted > args.scenes {
@@ -114,15 +131,21 @@ pub fn run(args: &Args) -> Result {
         &json_path,
         &serde_json::to_string_pretty(&json).expect("JSON values serialise"),
     )?;
-    let docs = cmd::root().join("docs");
-    write(&docs.join("tradeoff.md"), &report::markdown(&json))?;
-    write(&docs.join("tradeoff.svg"), &plot::svg(&json)?)?;
+    let reports = report_dir(args.update_docs);
+    let (md_path, svg_path) = (reports.join("tradeoff.md"), reports.join("tradeoff.svg"));
+    write(&md_path, &report::markdown(&json))?;
+    write(&svg_path, &plot::svg(&json)?)?;
     println!("{}", report::console(&json));
     println!(
-        "xtask bench: wrote {}, docs/tradeoff.md, docs/tradeoff.svg in {:.0} s",
+        "xtask bench: wrote {}, {}, {} in {:.0} s",
         json_path.display(),
+        md_path.display(),
+        svg_path.display(),
         started.elapsed().as_secs_f64()
     );
+    if !args.update_docs {
+        println!("xtask bench: docs/ left as it is (--update-docs writes the report there)");
+    }
     Ok(())
 }
 
@@ -161,4 +184,18 @@ fn write(path: &std::path::Path, text: &str) -> Result {
             .map_err(|e| Failure::new(format!("creating {}: {e}", parent.display())))?;
     }
     std::fs::write(path, text).map_err(|e| Failure::new(format!("writing {}: {e}", path.display())))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 18: a plain `cargo xtask bench` leaves the tracked documents alone.
+    #[test]
+    fn the_report_goes_to_docs_only_when_asked() {
+        assert_eq!(report_dir(false), out_dir());
+        assert!(report_dir(false).ends_with("bench"));
+        assert_eq!(report_dir(true), cmd::root().join("docs"));
+        assert!(report_dir(true).join("tradeoff.md").is_file());
+    }
 }

@@ -51,7 +51,8 @@ enum Command {
         timeout: u64,
     },
     /// Measure every model x backend x precision (Cortex-M4 instructions under QEMU, host
-    /// ns, error on the grid); write target/bench/tradeoff.json and docs/tradeoff.{md,svg}.
+    /// ns, error on the grid); write target/bench/tradeoff.{json,md,svg} (with
+    /// --update-docs, the report and plot over docs/tradeoff.{md,svg}).
     Bench(bench::Args),
     /// Build the cargo-fuzz targets (fuzz/) and run each for a bounded time on its
     /// committed seeds; fails on any crash (installs cargo-fuzz and a C++ compiler if
