@@ -314,7 +314,8 @@ pub enum UploadFault {
         /// Stroke id.
         stroke: u16,
     },
-    /// A sample outside the impact at the sensor's rail, or a single-sample spike.
+    /// A sample before the impact at the sensor's rail, or a single-sample spike
+    /// (`cuesight_sensors::find_glitch`).
     Glitch {
         /// Stroke id.
         stroke: u16,

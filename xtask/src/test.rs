@@ -117,7 +117,7 @@ fn rustdoc() -> Result {
 }
 
 /// The link-time no-panic proof: the shipped configuration (release profile: opt-level
-/// "z" with the physics at "s", fat LTO, one codegen unit; default features: the QEMU
+/// "z", LLVM inline threshold 50, fat LTO, one codegen unit; default features: the QEMU
 /// board and the `shot` request) whose panic handler calls a symbol defined nowhere, in
 /// its own target directory so the release ELF the QEMU steps run is left alone.
 fn panic_never() -> Result {

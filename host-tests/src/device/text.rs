@@ -383,7 +383,7 @@ fn upload_fault(f: &mut fmt::Formatter<'_>, fault: &UploadFault) -> fmt::Result 
             match kind {
                 GlitchName::Rail => write!(
                     f,
-                    "raw value {value} is at the sensor's rail outside the impact"
+                    "raw value {value} is at the sensor's rail before the impact"
                 )?,
                 GlitchName::Spike => write!(
                     f,
