@@ -16,7 +16,7 @@ use core::fmt;
 use std::io::{self, Write};
 use std::process::ExitCode;
 
-use cuesight::{Impact, Outcome, Params};
+use cuesight::{Impact, Model, Outcome, Params};
 use cuesight_link::response::InputEcho;
 use cuesight_link::{Collide, Defaults, LinkError, ModelName};
 
@@ -175,16 +175,60 @@ impl From<LinkError> for CliError {
 /// [`Collide::prepare`], as the firmware does, from the pool defaults and `kim-grip`),
 /// run the chosen solver and report the result.
 pub fn collide(request: &Collide) -> Result<Report, CliError> {
+    collide_within(request, None).map(|(report, _)| report)
+}
+
+/// As [`collide`], with `auto`'s tolerance (`None`: the link's default, 1e-3; checked
+/// by the core, in `(0, 1]`), and for `auto` the tier it picked
+/// ([`cuesight::select_model`], the function `Model::Auto` evaluates). A tolerance
+/// with another model is a usage error.
+pub fn collide_within(
+    request: &Collide,
+    tolerance: Option<f32>,
+) -> Result<(Report, Option<AutoPick>), CliError> {
     let prepared = request.prepare(&Defaults::POOL)?;
-    let outcome = match prepared.model.core() {
-        Some(model) => cuesight::collide(&prepared.params, &prepared.impact, model)?,
-        None => reference_collide(&prepared.params, &prepared.impact)?,
+    let model = match (prepared.model.core(), tolerance) {
+        (Some(Model::Auto { .. }), Some(tolerance)) => Some(Model::Auto { tolerance }),
+        (_, Some(_)) => {
+            return Err(CliError::Usage(format!(
+                "--tolerance is for --model auto, not {}",
+                prepared.model.name()
+            )))
+        }
+        (model, None) => model,
     };
-    Ok(Report::new(
-        prepared.model,
-        InputEcho::of(request, &prepared),
-        &outcome,
-    ))
+    let (params, impact) = (&prepared.params, &prepared.impact);
+    let outcome = match model {
+        Some(model) => cuesight::collide(params, impact, model)?,
+        None => reference_collide(params, impact)?,
+    };
+    // After `collide`, which has checked the tolerance.
+    let pick = match model {
+        Some(Model::Auto { tolerance }) => {
+            let (tier, estimate) = cuesight::select_model(params, impact, tolerance);
+            Some(AutoPick {
+                tolerance,
+                tier,
+                estimate,
+            })
+        }
+        _ => None,
+    };
+    let report = Report::new(prepared.model, InputEcho::of(request, &prepared), &outcome);
+    Ok((report, pick))
+}
+
+/// What `Model::Auto` did: the tier it evaluated and that tier's a-priori error
+/// estimate (`max(|Δv|, R|Δω|) / U`), for its tolerance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AutoPick {
+    /// The tolerance asked for.
+    pub tolerance: f32,
+    /// The tier evaluated: the cheapest whose estimate is within the tolerance, `exact`
+    /// if none is.
+    pub tier: Model,
+    /// The tier's estimate.
+    pub estimate: f32,
 }
 
 /// Run the reference solver, turning a panic into an error instead of a trace.

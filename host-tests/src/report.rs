@@ -21,6 +21,48 @@ pub fn to_json(report: &Report) -> String {
     serde_json::to_string(report).unwrap_or_else(|e| format!("{{\"error\":\"{e}\"}}"))
 }
 
+/// `collide --json` with `--model auto`: the report's keys, then the tolerance, the tier
+/// `auto` evaluated and its estimate (the names of `shot --json`'s contact).
+#[derive(serde::Serialize)]
+struct AutoJson<'a> {
+    #[serde(flatten)]
+    report: &'a Report,
+    tolerance: f32,
+    model_used: &'static str,
+    error_estimate: f32,
+}
+
+/// The report as one line of JSON, with `auto`'s pick when there is one: the keys of
+/// [`to_json`], then `tolerance`, `model_used` and `error_estimate`.
+pub fn to_json_with(report: &Report, pick: Option<&crate::cli::AutoPick>) -> String {
+    match pick {
+        None => to_json(report),
+        Some(pick) => serde_json::to_string(&AutoJson {
+            report,
+            tolerance: pick.tolerance,
+            model_used: pick.tier.name(),
+            error_estimate: pick.estimate,
+        })
+        .unwrap_or_else(|e| format!("{{\"error\":\"{e}\"}}")),
+    }
+}
+
+/// The line [`Text`] gets for `auto`'s pick (no newline).
+pub struct AutoLine<'a>(pub &'a crate::cli::AutoPick);
+
+impl fmt::Display for AutoLine<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let pick = self.0;
+        write!(
+            f,
+            "auto: {} (estimated error {:.3e} of U, tolerance {})",
+            pick.tier.name(),
+            pick.estimate,
+            pick.tolerance
+        )
+    }
+}
+
 /// `(x, y, z)` with fixed-width components, for aligned columns.
 struct Vector([f32; 3]);
 
@@ -148,6 +190,30 @@ mod tests {
         assert_eq!(report.throw_deg, outcome.throw_angle_deg());
         assert_eq!(report.regime.name(), outcome.regime.name());
         assert_eq!(report.input.mu, 0.05);
+    }
+
+    #[test]
+    fn auto_json_appends_the_pick_to_the_same_keys() {
+        let report = stun_cut();
+        let pick = crate::cli::AutoPick {
+            tolerance: 0.01,
+            tier: Model::Kim,
+            estimate: 0.005,
+        };
+        let plain = to_json(&report);
+        let with = to_json_with(&report, Some(&pick));
+        assert_eq!(
+            with,
+            format!(
+                "{},\"tolerance\":0.01,\"model_used\":\"kim\",\"error_estimate\":0.005}}",
+                plain.strip_suffix('}').unwrap()
+            )
+        );
+        assert_eq!(to_json_with(&report, None), plain);
+        assert_eq!(
+            AutoLine(&pick).to_string(),
+            "auto: kim (estimated error 5.000e-3 of U, tolerance 0.01)"
+        );
     }
 
     #[test]

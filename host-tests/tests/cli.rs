@@ -294,6 +294,98 @@ fn reference_model_runs_and_agrees_on_a_stun_cut() {
     assert!((throw(&reference) - throw(&kim_grip)).abs() < 1e-4);
 }
 
+/// `--model auto --tolerance T`: the tier the core's `select_model` picks for T, its
+/// estimate, and exactly that tier's outcome; a looser tolerance never picks a dearer
+/// tier.
+#[test]
+fn auto_tolerance_picks_the_cores_tier() {
+    use cuesight::{select_model, Impact, Model, Params};
+    let scene = ["--speed", "2", "--cut", "30", "--spin", "0,40,0"];
+    let impact = Impact::from_cut_degrees(2.0, 30.0, [0.0, 40.0, 0.0]).unwrap();
+    let rank = |name: &str| Model::ALL.iter().position(|m| m.name() == name).unwrap();
+    let mut last_rank = usize::MAX;
+    for tolerance in ["1e-5", "1e-3", "0.01", "0.05", "0.2", "1"] {
+        let mut args = scene.to_vec();
+        args.extend(["--model", "auto", "--tolerance", tolerance]);
+        let v = json(&args);
+        let t: f32 = tolerance.parse().unwrap();
+        let (tier, estimate) = select_model(&Params::POOL, &impact, t);
+        assert_eq!(v["model"], "auto");
+        let as_f32 = |key: &str| v[key].as_f64().map(|x| x as f32);
+        assert_eq!(as_f32("tolerance"), Some(t));
+        assert_eq!(v["model_used"], tier.name(), "{tolerance}");
+        assert_eq!(as_f32("error_estimate"), Some(estimate));
+        assert!(
+            estimate <= t || tier == Model::Exact,
+            "{tolerance}: {estimate}"
+        );
+        // The same numbers as asking for that tier.
+        let mut direct = scene.to_vec();
+        direct.extend(["--model", tier.name()]);
+        let d = json(&direct);
+        for key in ["cue", "object", "throw_deg", "impulses", "regime"] {
+            assert_eq!(v[key], d[key], "{tolerance}: {key}");
+        }
+        let r = rank(v["model_used"].as_str().unwrap());
+        assert!(
+            r <= last_rank,
+            "{tolerance}: a dearer tier than a tighter tolerance's"
+        );
+        last_rank = r;
+    }
+    // Without --tolerance: the link's default, 1e-3; without auto, no extra keys.
+    let mut args = scene.to_vec();
+    args.extend(["--model", "auto"]);
+    assert_eq!(json(&args)["tolerance"].as_f64(), Some(0.001));
+    let plain = json(&scene);
+    for key in ["tolerance", "model_used", "error_estimate"] {
+        assert!(plain.get(key).is_none(), "{key}");
+    }
+}
+
+#[test]
+fn auto_tolerance_in_the_summary_and_its_errors() {
+    let args = ["--speed", "2", "--cut", "30", "--model", "auto"];
+    let out = collide(&[&args[..], &["--tolerance", "0.05"]].concat());
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let last = text.lines().last().unwrap();
+    assert!(last.starts_with("auto: "), "{text}");
+    assert!(last.ends_with(", tolerance 0.05)"), "{text}");
+    // The other lines are the summary as before.
+    assert!(text.starts_with("model auto, regime "), "{text}");
+    assert_eq!(text.lines().count(), 7, "{text}");
+    let kim = collide(&["--speed", "2", "--cut", "30", "--model", "kim"]);
+    assert_eq!(String::from_utf8(kim.stdout).unwrap().lines().count(), 6);
+    // The core checks the tolerance: (0, 1], finite.
+    for bad in ["0", "-0.1", "1.5", "NaN", "inf"] {
+        let e = rejected(&[&args[..], &["--tolerance", bad]].concat(), 1);
+        assert!(e.starts_with("error: tolerance "), "{bad}: {e}");
+    }
+    // Only auto has a tolerance.
+    let e = rejected(&["--speed", "2", "--cut", "30", "--tolerance", "0.1"], 2);
+    assert!(
+        e.contains("--tolerance is for --model auto, not kim-grip"),
+        "{e}"
+    );
+    let e = rejected(
+        &[
+            "--speed",
+            "2",
+            "--cut",
+            "30",
+            "--model",
+            "reference",
+            "--tolerance",
+            "0.1",
+        ],
+        2,
+    );
+    assert!(e.contains("not reference"), "{e}");
+    let e = rejected(&[&args[..], &["--tolerance", "x"]].concat(), 2);
+    assert!(e.contains("--tolerance"), "{e}");
+}
+
 /// `cuesight device` with requests on stdin, against the in-process device.
 fn device(args: &[&str], stdin: &str) -> Output {
     use std::io::Write;

@@ -463,6 +463,59 @@ fn write_temp(name: &str, text: &str) -> PathBuf {
     path
 }
 
+/// `--tolerance` (or `tolerance` in the file) reaches auto: the tier it reports is the
+/// cheapest within it, and a looser one is never dearer.
+#[test]
+fn auto_tolerance_reaches_the_contact() {
+    let scene_file = scene("cut_to_corner.toml");
+    let aim = ["--scene", &scene_file, "--aim", "4.381"];
+    let tiers = ["ideal", "kim", "kim-grip", "seed-exact", "exact"];
+    let rank = |v: &Value| {
+        let used = v["contact"]["model_used"].as_str().unwrap();
+        tiers.iter().position(|&t| t == used).unwrap()
+    };
+    let default = json(&aim);
+    assert_eq!(default["contact"]["model"], "auto");
+    let mut last = usize::MAX;
+    for tolerance in ["1e-5", "1e-3", "0.01", "0.1", "1"] {
+        let v = json(&[&aim[..], &["--tolerance", tolerance]].concat());
+        let t: f64 = tolerance.parse().unwrap();
+        let estimate = number(&v, "/contact/error_estimate");
+        assert!(
+            estimate <= t || v["contact"]["model_used"] == "exact",
+            "{tolerance}: {estimate}"
+        );
+        assert!(rank(&v) <= last, "{tolerance}");
+        last = rank(&v);
+        if tolerance == "1e-3" {
+            assert_eq!(v["contact"], default["contact"]);
+        }
+    }
+    assert_eq!(last, 0, "tolerance 1: ideal");
+    // From the file; the flag overrides it.
+    let text = std::fs::read_to_string(&scene_file).unwrap();
+    let file = write_temp("tolerance.toml", &format!("tolerance = 1.0\n{text}"));
+    let file = file.to_str().unwrap();
+    let v = json(&["--scene", file, "--aim", "4.381"]);
+    assert_eq!(v["contact"]["model_used"], "ideal");
+    let v = json(&["--scene", file, "--aim", "4.381", "--tolerance", "1e-3"]);
+    assert_eq!(v["contact"], default["contact"]);
+    // Checked by the core, solving or playing; only for auto.
+    for bad in ["0", "-1", "2", "NaN"] {
+        fails(&[&aim[..], &["--tolerance", bad]].concat(), 1, "tolerance");
+        fails(
+            &["--scene", &scene_file, "--tolerance", bad],
+            1,
+            "tolerance",
+        );
+    }
+    fails(
+        &[&aim[..], &["--model", "exact", "--tolerance", "0.1"]].concat(),
+        2,
+        "tolerance is for model auto, not exact",
+    );
+}
+
 #[test]
 fn bad_scene_files_are_usage_errors() {
     let cases = [

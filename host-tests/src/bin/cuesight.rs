@@ -103,6 +103,11 @@ struct CollideArgs {
     /// first-principles solver.
     #[arg(long, default_value = "kim-grip", value_parser = cli::parse_model)]
     model: ModelName,
+    /// With --model auto: the accepted error of the tier auto picks, relative to U, in
+    /// (0, 1] (auto evaluates the cheapest tier whose a-priori estimate is within it)
+    /// [default: 1e-3].
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    tolerance: Option<f32>,
     /// Print one JSON object on one line instead of the summary.
     #[arg(long)]
     json: bool,
@@ -155,9 +160,17 @@ fn main() -> ExitCode {
         mass: args.mass.or(file.mass),
         model: Some(args.model),
     };
-    match cli::collide(&request) {
-        Ok(report) if args.json => cli::print_line(report::to_json(&report)),
-        Ok(report) => cli::print_line(report::Text(&report)),
+    match cli::collide_within(&request, args.tolerance) {
+        Ok((report, pick)) if args.json => {
+            cli::print_line(report::to_json_with(&report, pick.as_ref()))
+        }
+        Ok((report, pick)) => cli::write_output(|out| {
+            writeln!(out, "{}", report::Text(&report))?;
+            match &pick {
+                Some(pick) => writeln!(out, "{}", report::AutoLine(pick)),
+                None => Ok(()),
+            }
+        }),
         Err(error) => {
             cli::error_line(&error);
             ExitCode::from(error.exit_code())

@@ -15,6 +15,7 @@
 //! tip = [0.0, 0.2]          # tip offset (side right, height up) in ball radii
 //! aim = 12.5                # aim (degrees counter-clockwise from +x); none: solve for it
 //! model = "auto"            # ideal | kim | kim-grip | exact | auto
+//! tolerance = 1e-3          # auto's accepted error, relative to the speed, in (0, 1]
 //! mu = 0.05                 # ball-ball friction; also restitution, mu_s, mu_cloth,
 //!                           # mu_roll, cue_mass, tip_restitution
 //! ```
@@ -194,6 +195,8 @@ pub struct SceneFile {
     pub aim: Option<f32>,
     /// Collision model name.
     pub model: Option<String>,
+    /// `auto`'s tolerance.
+    pub tolerance: Option<f32>,
     /// Ball–ball friction μ.
     pub mu: Option<f32>,
     /// Restitution e*.
@@ -347,6 +350,10 @@ pub struct Flags {
     /// tier within 1e-3) [default: auto].
     #[arg(long, value_name = "NAME", value_parser = parse_model)]
     pub model: Option<Model>,
+    /// With model auto: the accepted error of the tier it picks, relative to the speed,
+    /// in (0, 1] [default: 1e-3].
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub tolerance: Option<f32>,
     /// Ball–ball friction μ [default: 0.05].
     #[arg(long, allow_negative_numbers = true)]
     pub mu: Option<f32>,
@@ -518,6 +525,17 @@ impl Request {
             (None, None) => Model::Auto {
                 tolerance: AUTO_TOLERANCE,
             },
+        };
+        let model = match (model, flags.tolerance.or(file.tolerance)) {
+            // The core checks the tolerance.
+            (Model::Auto { .. }, Some(tolerance)) => Model::Auto { tolerance },
+            (model, Some(_)) => {
+                return Err(ShotError::usage(format!(
+                    "tolerance is for model auto, not {}",
+                    model.name()
+                )))
+            }
+            (model, None) => model,
         };
         let mut params = params;
         if let Some(mu) = flags.mu.or(file.mu) {
