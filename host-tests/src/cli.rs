@@ -123,6 +123,53 @@ pub fn parse_spin(text: &str) -> Result<[f32; 3], String> {
     Ok(spin)
 }
 
+/// Parse a `--tip` value `SIDE,HEIGHT` (ball radii, as `shot --tip`). Only the syntax
+/// is checked here; the bound (`|b| ≤ 0.5 R`) is the core's strike's.
+pub fn parse_tip(text: &str) -> Result<[f32; 2], String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    if parts.len() != 2 {
+        return Err(format!(
+            "tip needs two comma-separated numbers SIDE,HEIGHT (ball radii), got {}",
+            parts.len()
+        ));
+    }
+    let mut tip = [0.0; 2];
+    for ((value, part), name) in tip.iter_mut().zip(&parts).zip(["side", "height"]) {
+        *value = part
+            .parse::<f32>()
+            .map_err(|_| format!("tip {name} '{part}' is not a number"))?;
+    }
+    Ok(tip)
+}
+
+/// The spin (rad/s, collision frame) of a cue ball that arrives at the request's speed
+/// and cut with the state a cue strike at `tip` gives it (`SIDE,HEIGHT` in ball radii:
+/// side > 0 right english, height > 0 follow; `0,0.4` is natural roll). The core's
+/// [`cuesight::strike::strike`] gives the spin per unit of ball speed, which depends on
+/// neither the cue nor its speed (TP A.30: `ω = 5 v b / 2R²`), scaled to the speed, and
+/// [`cuesight::strike::Strike::to_impact`] turns it into the collision frame. As there,
+/// what the cloth does between the strike and the impact is not applied. Errors: the
+/// request's own (speed, cut, radius), a tip beyond `0.5 R`.
+pub fn tip_spin(request: &Collide, tip: [f32; 2]) -> Result<[f32; 3], CliError> {
+    use cuesight::strike::{strike, Cue, Strike, TipOffset};
+    let stun = Collide {
+        spin: None,
+        roll: false,
+        ..*request
+    };
+    let prepared = stun.prepare(&Defaults::POOL)?;
+    let params = &prepared.params;
+    let offset = TipOffset::from_radius_fraction(tip[0], tip[1], params.radius())?;
+    let unit = strike(params, &Cue::TYPICAL, offset, 1.0)?;
+    let speed = prepared.impact.speed();
+    let arriving = Strike {
+        speed,
+        spin: unit.spin * (speed / unit.speed),
+    };
+    let impact = arriving.to_impact(request.cut.to_radians())?;
+    Ok(impact.spin().to_array())
+}
+
 /// Why a well-formed request produced no prediction.
 #[derive(Clone, Debug, PartialEq)]
 pub enum CliError {
@@ -294,6 +341,28 @@ mod tests {
         assert!(parse_spin("1,2,3,4").unwrap_err().contains("three"));
         assert!(parse_spin("1,x,3").unwrap_err().contains("spin.y"));
         assert!(parse_spin("").is_err());
+    }
+
+    #[test]
+    fn tip_parses_and_gives_the_strikes_spin() {
+        assert_eq!(parse_tip("-0.2, 0.3"), Ok([-0.2, 0.3]));
+        assert!(parse_tip("0.1").unwrap_err().contains("two"));
+        assert!(parse_tip("0.1,up").unwrap_err().contains("tip height"));
+        let request = Collide::new(2.0, 0.0);
+        let r = Defaults::POOL.params.radius();
+        // 2R/5 above centre: natural roll, w_y = U / R.
+        let roll = tip_spin(&request, [0.0, 0.4]).unwrap();
+        assert!((roll[1] - 2.0 / r).abs() < 1e-5 * roll[1], "{roll:?}");
+        assert_eq!([roll[0], roll[2]], [0.0, 0.0]);
+        // Right english: counter-clockwise from above (the strike's sign).
+        let right = tip_spin(&request, [0.3, 0.0]).unwrap();
+        assert!(right[2] > 0.0 && right[1] == 0.0, "{right:?}");
+        // Centre: stun. Beyond R/2: the core's tip error.
+        assert_eq!(tip_spin(&request, [0.0, 0.0]).unwrap(), [0.0; 3]);
+        let CliError::Core(e) = tip_spin(&request, [0.0, 0.6]).unwrap_err() else {
+            panic!("not the core's error")
+        };
+        assert_eq!(e.field(), Some(Field::TipOffset));
     }
 
     #[test]

@@ -386,6 +386,53 @@ fn auto_tolerance_in_the_summary_and_its_errors() {
     assert!(e.contains("--tolerance"), "{e}");
 }
 
+/// `--tip SIDE,HEIGHT` (shot's vocabulary): the strike's spin at the arrival speed, in
+/// rad/s in the echo; `0,0.4` is natural roll, and the tip's spin played as `--spin`
+/// gives the same answer.
+#[test]
+fn tip_offsets_are_spins_from_the_strike() {
+    let scene = ["--speed", "2", "--cut", "30"];
+    let with = |extra: &[&str]| json(&[&scene[..], extra].concat());
+    let tip_roll = with(&["--tip", "0,0.4"]);
+    let roll = with(&["--roll"]);
+    let (a, b) = (
+        vec3(&tip_roll["input"]["spin"]),
+        vec3(&roll["input"]["spin"]),
+    );
+    for i in 0..3 {
+        assert!((a[i] - b[i]).abs() <= 1e-5 * 70.0, "{a:?} vs {b:?}");
+    }
+    let close = |x: &Value, y: &Value| (x.as_f64().unwrap() - y.as_f64().unwrap()).abs() < 1e-4;
+    assert!(close(&tip_roll["throw_deg"], &roll["throw_deg"]));
+    assert_eq!(tip_roll["input"]["roll"], false);
+    for tip in ["0.3,-0.2", "-0.25,0", "0,-0.5"] {
+        let v = with(&["--tip", tip]);
+        let spin = vec3(&v["input"]["spin"])
+            .map(|w| (w as f32).to_string())
+            .join(",");
+        let direct = with(&["--spin", &spin]);
+        assert_eq!(v, direct, "{tip}: --spin {spin}");
+    }
+    // Head on, right english throws the object ball to the left (+y), left english to
+    // the right (the strike's and the collision's signs, as in the core's tests).
+    let throw = |tip: &str| {
+        let v = json(&["--speed", "2", "--cut", "0", "--tip", tip]);
+        v["throw_deg"].as_f64().unwrap()
+    };
+    assert!(throw("0.3,0") > 0.5, "{}", throw("0.3,0"));
+    assert!(throw("-0.3,0") < -0.5, "{}", throw("-0.3,0"));
+    // Errors: beyond R/2 (the core's), the syntax, with --spin or --roll.
+    let e = rejected(&[&scene[..], &["--tip", "0.4,0.4"]].concat(), 1);
+    assert!(e.starts_with("error: tip_offset "), "{e}");
+    let e = rejected(&[&scene[..], &["--tip", "0.1"]].concat(), 2);
+    assert!(e.contains("SIDE,HEIGHT"), "{e}");
+    rejected(&[&scene[..], &["--tip", "0,0.1", "--roll"]].concat(), 2);
+    rejected(
+        &[&scene[..], &["--tip", "0,0.1", "--spin", "0,1,0"]].concat(),
+        2,
+    );
+}
+
 /// `cuesight device` with requests on stdin, against the in-process device.
 fn device(args: &[&str], stdin: &str) -> Output {
     use std::io::Write;

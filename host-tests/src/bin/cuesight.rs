@@ -65,13 +65,21 @@ struct CollideArgs {
     /// Cut angle φ in degrees, |φ| < 90 (velocity U (cos φ, sin φ, 0)).
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
     cut: f32,
-    /// Cue-ball angular velocity in rad/s (topspin is WY > 0) [default: 0,0,0, stun].
+    /// Cue-ball angular velocity in rad/s (topspin is WY > 0) [default: 0,0,0, stun];
+    /// or --roll, or --tip.
     #[arg(long, value_name = "WX,WY,WZ", allow_hyphen_values = true,
           value_parser = cli::parse_spin, conflicts_with = "roll")]
     spin: Option<[f32; 3]>,
     /// Natural roll for the given velocity instead of --spin.
     #[arg(long)]
     roll: bool,
+    /// Spin from a cue strike instead of --spin: the tip offset in ball radii, as `shot
+    /// --tip` (side > 0 right english, height > 0 follow, |b| <= 0.5; 0,0.4 is natural
+    /// roll). The ball arrives with the spin the strike gives at speed U (the cloth's
+    /// effect on the way is not applied); the spin is echoed in rad/s.
+    #[arg(long, value_name = "SIDE,HEIGHT", allow_hyphen_values = true,
+          value_parser = cli::parse_tip, conflicts_with_all = ["spin", "roll"])]
+    tip: Option<[f32; 2]>,
     /// Contact parameters from a JSON file (mu, mu_b, mu_c, restitution, mu_s, radius,
     /// mass; what `cuesight calibrate --json` prints); flags given override it.
     #[arg(long, value_name = "FILE")]
@@ -146,7 +154,7 @@ fn main() -> ExitCode {
         },
         None => ParamsFile::default(),
     };
-    let request = Collide {
+    let mut request = Collide {
         speed: args.speed,
         cut: args.cut,
         spin: args.spin,
@@ -160,6 +168,15 @@ fn main() -> ExitCode {
         mass: args.mass.or(file.mass),
         model: Some(args.model),
     };
+    if let Some(tip) = args.tip {
+        match cli::tip_spin(&request, tip) {
+            Ok(spin) => request.spin = Some(spin),
+            Err(error) => {
+                cli::error_line(&error);
+                return ExitCode::from(error.exit_code());
+            }
+        }
+    }
     match cli::collide_within(&request, args.tolerance) {
         Ok((report, pick)) if args.json => {
             cli::print_line(report::to_json_with(&report, pick.as_ref()))
