@@ -4,6 +4,7 @@ pub mod calibrate;
 pub mod cli;
 pub mod compare;
 pub mod device;
+pub mod domain;
 pub mod firmware;
 pub mod grid;
 pub mod reference;

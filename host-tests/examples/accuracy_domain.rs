@@ -1,0 +1,112 @@
+//! The domain map of docs/accuracy-domain.md: every model against the reference solver
+//! on `--scenes N` seeded scenes of the whole accepted domain
+//! (`cuesight_host::domain`), printed as Markdown tables; with `--out DIR`, also
+//! written to `DIR/accuracy-domain-tables.md` and `DIR/accuracy-domain.svg`.
+//!
+//! ```sh
+//! cargo run --release -p cuesight-host --example accuracy_domain -- --scenes 100000 --out docs/
+//! ```
+//!
+//! Options: `--scenes N` (default 100,000), `--seed S` (default 16), `--threads T`
+//! (default 2), `--out DIR`.
+use cuesight_host::domain::{sample, score_all, Map};
+use std::time::Instant;
+
+fn main() {
+    let mut scenes = 100_000usize;
+    let mut seed = 16u64;
+    let mut threads = 2usize;
+    let mut out: Option<std::path::PathBuf> = None;
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        let mut value = || args.next().unwrap_or_else(|| panic!("{a} needs a value"));
+        match a.as_str() {
+            "--scenes" => scenes = value().parse().expect("--scenes N"),
+            "--seed" => seed = value().parse().expect("--seed S"),
+            "--threads" => threads = value().parse().expect("--threads T"),
+            "--out" => out = Some(value().into()),
+            other => panic!("unknown argument {other}"),
+        }
+    }
+    let start = Instant::now();
+    let set = sample(seed, scenes);
+    let sampled = start.elapsed();
+    let scored = score_all(&set, threads);
+    let elapsed = start.elapsed();
+    let map = Map::of(&scored);
+    let tables = map.markdown();
+    println!(
+        "{scenes} scenes, seed {seed}, {threads} threads: sampled in {:.2} s, scored \
+         (reference + 6 models) in {:.1} s, {:.0} µs per scene per thread",
+        sampled.as_secs_f64(),
+        elapsed.as_secs_f64(),
+        1e6 * elapsed.as_secs_f64() * threads as f64 / scenes.max(1) as f64
+    );
+    println!("{tables}");
+    println!("#### Worst scene per model\n");
+    for (m, (name, _)) in cuesight_host::domain::MODELS.iter().enumerate() {
+        let (i, worst) = scored
+            .iter()
+            .enumerate()
+            .max_by(|a, b| a.1.combined(m).total_cmp(&b.1.combined(m)))
+            .expect("scenes");
+        let (t, throw) = scored
+            .iter()
+            .enumerate()
+            .max_by(|a, b| {
+                let e =
+                    |s: &cuesight_host::domain::Scored| s.errors[m].map_or(0.0, |e| e.throw_deg);
+                e(a.1).total_cmp(&e(b.1))
+            })
+            .expect("scenes");
+        for (what, index, s) in [("combined", i, worst), ("throw", t, throw)] {
+            let d = &s.scene;
+            println!(
+                "- {name}, worst {what}: scene {index}: {:?} (|dv|/U, R|dw|/U, throw deg); \
+                 U {:.4} m/s, cut {:.4} deg, spin {:?} rad/s, {:?}, e* {}, mu_s {}, mu_ct {}, R {} m",
+                s.errors[m].map(|e| (e.velocity, e.spin, e.throw_deg)),
+                d.scene.speed(),
+                d.cut_deg,
+                d.scene.spin,
+                d.friction,
+                d.scene.restitution,
+                d.scene.mu_s,
+                d.mu_ct,
+                d.scene.radius
+            );
+        }
+    }
+    println!("\n#### KimGrip's worst scene per μ·μ_s band\n");
+    let bands = cuesight_host::domain::MU_MU_S_BANDS;
+    for (b, hi) in bands.iter().enumerate() {
+        let worst = scored
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| {
+                let x = s.scene.mu() * s.scene.scene.mu_s as f64;
+                cuesight_host::domain::band(x, &bands) == b
+            })
+            .max_by(|a, b| a.1.combined(2).total_cmp(&b.1.combined(2)));
+        if let Some((i, s)) = worst {
+            let d = &s.scene;
+            println!(
+                "- mu*mu_s <= {hi}: scene {i}, {:.3e} of U; U {:.4} m/s, cut {:.4} deg, spin {:?} \
+                 rad/s ({:?}), {:?}, e* {}, mu_s {}, mu_ct {}",
+                s.combined(2),
+                d.scene.speed(),
+                d.cut_deg,
+                d.scene.spin,
+                d.spin_draw,
+                d.friction,
+                d.scene.restitution,
+                d.scene.mu_s,
+                d.mu_ct
+            );
+        }
+    }
+    if let Some(dir) = out {
+        std::fs::create_dir_all(&dir).expect("create --out");
+        std::fs::write(dir.join("accuracy-domain-tables.md"), &tables).expect("write tables");
+        std::fs::write(dir.join("accuracy-domain.svg"), map.svg()).expect("write svg");
+    }
+}

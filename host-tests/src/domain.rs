@@ -1,0 +1,638 @@
+//! The domain map (issue 16, item 1): every model against the f64 reference solver over
+//! the whole input domain the core's constructors accept, not only the foundation grid
+//! of [`crate::grid`].
+//!
+//! # The sampler ([`sample`])
+//!
+//! Seeded (`ChaCha8Rng`), one stream per scene index (`seed`, `index`), so any scene can
+//! be regenerated alone and the set does not depend on the thread count. Inputs are drawn
+//! in f64 and rounded to f32 once; core and reference see the same rounded values.
+//!
+//! | input | distribution | core's accepted range |
+//! |---|---|---|
+//! | speed U | 10 % log-uniform 0.01–0.1 m/s, 75 % log-uniform 0.1–10 m/s, 15 % log-uniform 10–100 m/s | (0, 100] m/s |
+//! | cut φ | random sign; 85 % uniform 0–89.5°, 15 % uniform 89.5–89.99° | \|φ\| < 90° (v_x > 0 in f32) |
+//! | spin ω (rad/s) | 5 % none; 45 % cue-like: follow/draw −2…+2 × natural roll, side ±1.5 U/R, ω_x ±0.5 U/R; 40 % each component uniform ±400 rad/s; 10 % each component log-uniform 1–10,000 rad/s in magnitude, random sign | each component ±10,000 rad/s |
+//! | friction law | 85 % constant μ: 3 % exactly 0, else uniform (0, 1]; 15 % μ(v) = a + b·e^(−cv): μ(0) = a + b uniform 0.01–1, a = μ(0)·uniform 0.05–1, c log-uniform 0.01–100 s/m | μ ∈ [0, 1]; a ∈ [1e-6, 1], b ∈ [0, 1], a + b ≤ 1, c ∈ [0, 100] |
+//! | μ_s | uniform [0, 1] | [0, 1] |
+//! | e* | uniform [0, 1] | [0, 1] |
+//! | μ_ct | 70 % 0, 30 % uniform [0, 1] | [0, 1] |
+//! | R, M | pool 28.575 mm / 0.17 kg, snooker 26.25 mm / 0.142 kg or carom 30.75 mm / 0.21 kg, equally likely | R ∈ [1 mm, 1 m], M ∈ [1 g, 100 kg] (not covered) |
+//!
+//! μ in the bins and tables is [`cuesight::Params::mu`]: the constant, or μ(0) = a + b
+//! for a speed-dependent law (its stick limit and its largest value).
+//!
+//! # The measures
+//!
+//! Per scene and model, [`crate::compare::scene_error`]: `|Δv|/U` and `R|Δω|/U` (worst of
+//! the two balls, full 3-vectors) and the throw error in degrees. A scene is *within x of
+//! U* when `max(|Δv|, R|Δω|)/U ≤ x`; the map counts x = 0.05 %, 0.5 % and 5 %. A model
+//! that returns an error (e.g. `SeedExact`'s `NumericalFailure`) counts as outside every
+//! threshold, and is counted apart.
+
+use crate::compare::{scene_error, widen};
+use crate::grid::{Scene, SpinKind};
+use crate::reference::{solve, ReferenceConfig, ReferenceOutcome, ReferenceParams};
+use cuesight::{collide, FrictionLaw, Impact, Model, Params};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::fmt::Write;
+
+/// The models mapped, in the order of every table: the five tiers and `Auto` at 1e-3.
+pub const MODELS: [(&str, Model); 6] = [
+    ("Ideal", Model::Ideal),
+    ("Kim", Model::Kim),
+    ("KimGrip", Model::KimGrip),
+    ("SeedExact", Model::SeedExact),
+    ("Exact", Model::Exact),
+    ("Auto(1e-3)", Model::Auto { tolerance: 1e-3 }),
+];
+
+/// Index of `Auto` in [`MODELS`], and its tolerance.
+pub const AUTO: usize = 5;
+/// `Auto`'s tolerance in [`MODELS`].
+pub const AUTO_TOLERANCE: f64 = 1e-3;
+
+/// The thresholds of the map, in units of U: 0.05 %, 0.5 %, 5 %.
+pub const THRESHOLDS: [f64; 3] = [5e-4, 5e-3, 5e-2];
+
+/// How the spin of a scene was drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpinDraw {
+    /// No spin.
+    None,
+    /// Follow/draw and side in the range of a cue stroke, scaled to U.
+    CueLike,
+    /// Each component uniform in ±400 rad/s.
+    Uniform400,
+    /// Each component log-uniform in magnitude 1–10,000 rad/s (the core's limit).
+    Extreme,
+}
+
+/// One sampled scene of the accepted domain.
+#[derive(Clone, Copy, Debug)]
+pub struct DomainScene {
+    /// Velocity, spin, constant μ (or μ(0)), e*, μ_s, R, M as f32 (the `kind` field is
+    /// not used by the domain map: [`SpinKind::Side`]).
+    pub scene: Scene,
+    /// How the spin was drawn.
+    pub spin_draw: SpinDraw,
+    /// Cut angle φ in degrees (signed), as drawn (the velocity is its f32 rounding).
+    pub cut_deg: f64,
+    /// The ball–ball friction law.
+    pub friction: FrictionLaw,
+    /// Cue-ball/table friction μ_ct.
+    pub mu_ct: f32,
+}
+
+impl DomainScene {
+    /// Core parameters (validated: the sampler only draws accepted values).
+    pub fn params(&self) -> Params {
+        let s = &self.scene;
+        Params::new(0.0, s.restitution, s.mu_s, s.radius, s.mass)
+            .expect("domain params are valid")
+            .with_friction_law(self.friction)
+            .with_cue_table_friction(self.mu_ct)
+            .expect("domain μ_ct is valid")
+    }
+
+    /// Core impact.
+    pub fn impact(&self) -> Impact {
+        self.scene.impact()
+    }
+
+    /// μ, or μ(0) for a speed-dependent law.
+    pub fn mu(&self) -> f64 {
+        self.params().mu() as f64
+    }
+
+    /// Reference solve (default configuration) with the scene's full parameters (friction
+    /// law and μ_ct included).
+    pub fn reference(&self) -> ReferenceOutcome {
+        let s = &self.scene;
+        solve(
+            &ReferenceParams::from_core(&self.params()),
+            glam::DVec3::new(s.velocity[0] as f64, s.velocity[1] as f64, 0.0),
+            widen(cuesight::Vec3::from_array(s.spin)),
+            &ReferenceConfig::default(),
+        )
+        .expect("the reference accepts every domain scene")
+    }
+}
+
+fn log_uniform(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> f64 {
+    (rng.random_range(lo.ln()..=hi.ln())).exp()
+}
+
+/// Scene `index` of the domain set `seed` (see the module docs for the distribution).
+pub fn scene(seed: u64, index: u64) -> DomainScene {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream(index);
+    let u: f64 = rng.random();
+    let speed = if u < 0.10 {
+        log_uniform(&mut rng, 0.01, 0.1)
+    } else if u < 0.85 {
+        log_uniform(&mut rng, 0.1, 10.0)
+    } else {
+        log_uniform(&mut rng, 10.0, 100.0)
+    };
+    let sign = if rng.random::<bool>() { 1.0 } else { -1.0 };
+    let cut_deg = sign
+        * if rng.random::<f64>() < 0.85 {
+            rng.random_range(0.0..=89.5)
+        } else {
+            rng.random_range(89.5..=89.99)
+        };
+    let cut = f64::to_radians(cut_deg);
+    let (vx, vy) = (speed * cut.cos(), speed * cut.sin());
+    let (radius, mass) =
+        [(0.028575, 0.17), (0.02625, 0.142), (0.03075, 0.21)][rng.random_range(0..3usize)];
+    let roll = [-vy / radius, vx / radius];
+    let u: f64 = rng.random();
+    let (spin_draw, spin) = if u < 0.05 {
+        (SpinDraw::None, [0.0; 3])
+    } else if u < 0.50 {
+        let f = rng.random_range(-2.0..=2.0);
+        let side = rng.random_range(-1.5..=1.5) * speed / radius;
+        let wx = rng.random_range(-0.5..=0.5) * speed / radius;
+        (
+            SpinDraw::CueLike,
+            [
+                roll[0] * f + wx * cut.cos(),
+                roll[1] * f + wx * cut.sin(),
+                side,
+            ],
+        )
+    } else if u < 0.90 {
+        let mut w = [0.0; 3];
+        for c in &mut w {
+            *c = rng.random_range(-400.0..=400.0);
+        }
+        (SpinDraw::Uniform400, w)
+    } else {
+        let mut w = [0.0; 3];
+        for c in &mut w {
+            let s = if rng.random::<bool>() { 1.0 } else { -1.0 };
+            *c = s * log_uniform(&mut rng, 1.0, 10_000.0);
+        }
+        (SpinDraw::Extreme, w)
+    };
+    let friction = if rng.random::<f64>() < 0.85 {
+        if rng.random::<f64>() < 0.03 {
+            FrictionLaw::Constant(0.0)
+        } else {
+            FrictionLaw::Constant((1.0 - rng.random::<f64>()) as f32)
+        }
+    } else {
+        let mu0 = rng.random_range(0.01..=1.0f64);
+        let a = mu0 * rng.random_range(0.05..=1.0);
+        let c = log_uniform(&mut rng, 0.01, 100.0);
+        let (a, b) = (a as f32, (mu0 - a).max(0.0) as f32);
+        // a + b ≤ 1 in f32.
+        let b = if a + b > 1.0 { 1.0 - a } else { b };
+        FrictionLaw::speed_dependent(a, b, c as f32).expect("drawn inside the accepted range")
+    };
+    let mu_s = rng.random_range(0.0..=1.0f64) as f32;
+    let restitution = rng.random_range(0.0..=1.0f64) as f32;
+    let mu_ct = if rng.random::<f64>() < 0.7 {
+        0.0
+    } else {
+        rng.random_range(0.0..=1.0f64) as f32
+    };
+    let mut vx32 = vx as f32;
+    if vx32 <= 0.0 {
+        vx32 = f32::MIN_POSITIVE; // cannot happen at |φ| ≤ 89.99° and U ≥ 0.01 m/s
+    }
+    DomainScene {
+        scene: Scene {
+            kind: SpinKind::Side,
+            velocity: [vx32, vy as f32],
+            spin: spin.map(|w: f64| w.clamp(-10_000.0, 10_000.0) as f32),
+            mu: match friction {
+                FrictionLaw::Constant(mu) => mu,
+                FrictionLaw::SpeedDependent { a, b, .. } => a + b,
+            },
+            restitution,
+            mu_s,
+            radius: radius as f32,
+            mass: mass as f32,
+        },
+        spin_draw,
+        cut_deg,
+        friction,
+        mu_ct,
+    }
+}
+
+/// Scenes `0..count` of the domain set `seed`.
+pub fn sample(seed: u64, count: usize) -> Vec<DomainScene> {
+    (0..count as u64).map(|i| scene(seed, i)).collect()
+}
+
+/// The error of one model on one scene; `None` if the model returned an error.
+pub type ModelError = Option<crate::compare::SceneError>;
+
+/// Every model's error on one scene, in [`MODELS`] order.
+#[derive(Clone, Copy, Debug)]
+pub struct Scored {
+    /// The scene.
+    pub scene: DomainScene,
+    /// Per model.
+    pub errors: [ModelError; 6],
+    /// The reference's object-ball speed over U (the throw angle is ill-conditioned where
+    /// it is small: at |φ| → 90° the object ball barely moves).
+    pub object_speed: f64,
+}
+
+impl Scored {
+    /// `max(|Δv|, R|Δω|)/U` of model `m` (index into [`MODELS`]); +∞ on a model error.
+    pub fn combined(&self, m: usize) -> f64 {
+        self.errors[m].map_or(f64::INFINITY, |e| e.velocity.max(e.spin))
+    }
+}
+
+/// Score one scene: reference solve, then every model.
+pub fn score(scene: &DomainScene) -> Scored {
+    let r = scene.reference();
+    let (params, impact) = (scene.params(), scene.impact());
+    let errors = MODELS.map(|(_, model)| {
+        collide(&params, &impact, model)
+            .ok()
+            .map(|out| scene_error(&scene.scene, &out, &r))
+    });
+    Scored {
+        scene: *scene,
+        errors,
+        object_speed: r.object_ball.velocity.length() / scene.scene.speed(),
+    }
+}
+
+/// Score every scene on `threads` threads (`std::thread::scope`), keeping the order.
+pub fn score_all(scenes: &[DomainScene], threads: usize) -> Vec<Scored> {
+    let threads = threads.max(1);
+    let chunk = scenes.len().div_ceil(threads).max(1);
+    std::thread::scope(|s| {
+        let handles: Vec<_> = scenes
+            .chunks(chunk)
+            .map(|c| s.spawn(move || c.iter().map(score).collect::<Vec<_>>()))
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().expect("scoring thread"))
+            .collect()
+    })
+}
+
+/// Bands of μ·μ_s the tables are split by (upper edges; the last is 1).
+pub const MU_MU_S_BANDS: [f64; 7] = [0.02, 0.05, 0.08, 0.11, 0.2, 0.4, 1.0];
+
+/// Bands of |φ| in degrees (upper edges).
+pub const CUT_BANDS: [f64; 4] = [60.0, 85.0, 89.5, 90.0];
+
+/// Bins per axis of the (μ, μ_s) heat map.
+pub const GRID: usize = 10;
+
+/// Index of the band `x` falls in (edges are upper edges, inclusive).
+pub fn band(x: f64, edges: &[f64]) -> usize {
+    edges
+        .iter()
+        .position(|&e| x <= e)
+        .unwrap_or(edges.len() - 1)
+}
+
+/// Counts of one region: scenes, and per model and threshold the scenes within it,
+/// per model the scenes where the model returned an error, the worst combined error
+/// and the worst throw error.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Cell {
+    /// Scenes in the region.
+    pub count: usize,
+    /// `within[m][t]`: scenes where model `m` is within [`THRESHOLDS`]`[t]` of U.
+    pub within: [[usize; 3]; 6],
+    /// Scenes where the model returned an error.
+    pub failed: [usize; 6],
+    /// Worst `max(|Δv|, R|Δω|)/U` per model (finite outcomes only).
+    pub worst: [f64; 6],
+    /// Worst throw error (degrees) per model.
+    pub worst_throw: [f64; 6],
+    /// Worst throw error (degrees) per model where the reference's object ball leaves
+    /// with at least [`MIN_OBJECT_SPEED`] of U.
+    pub worst_throw_moving: [f64; 6],
+    /// Scenes where `Auto(1e-3)` is within its own tolerance, 1e-3 of U.
+    pub auto_within_tolerance: usize,
+}
+
+/// The larger of `a` and `b`, NaN if either is (a NaN error must show, not vanish).
+fn nan_max(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.max(b)
+    }
+}
+
+/// Object-ball speed (fraction of U) above which a throw error counts in
+/// [`Cell::worst_throw_moving`].
+pub const MIN_OBJECT_SPEED: f64 = 0.05;
+
+impl Cell {
+    /// Add one scored scene.
+    pub fn add(&mut self, s: &Scored) {
+        self.count += 1;
+        for m in 0..MODELS.len() {
+            match s.errors[m] {
+                None => self.failed[m] += 1,
+                Some(e) => {
+                    let c = e.velocity.max(e.spin);
+                    for (t, &x) in THRESHOLDS.iter().enumerate() {
+                        if c <= x {
+                            self.within[m][t] += 1;
+                        }
+                    }
+                    self.worst[m] = nan_max(self.worst[m], c);
+                    self.worst_throw[m] = nan_max(self.worst_throw[m], e.throw_deg);
+                    if m == AUTO && c <= AUTO_TOLERANCE {
+                        self.auto_within_tolerance += 1;
+                    }
+                    if s.object_speed >= MIN_OBJECT_SPEED {
+                        self.worst_throw_moving[m] =
+                            nan_max(self.worst_throw_moving[m], e.throw_deg);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Share of the region's scenes where model `m` is within threshold `t`.
+    pub fn share(&self, m: usize, t: usize) -> f64 {
+        self.within[m][t] as f64 / self.count.max(1) as f64
+    }
+}
+
+/// The map: totals, bands of μ·μ_s, bands of cut, the (μ, μ_s) grid.
+#[derive(Clone, Debug)]
+pub struct Map {
+    /// Every scene.
+    pub all: Cell,
+    /// By μ·μ_s band ([`MU_MU_S_BANDS`]).
+    pub by_mu_mu_s: [Cell; 7],
+    /// By μ·μ_s band, scenes with μ_ct = 0 only.
+    pub by_mu_mu_s_no_ct: [Cell; 7],
+    /// By |φ| band ([`CUT_BANDS`]).
+    pub by_cut: [Cell; 4],
+    /// `grid[i][j]`: μ in bin i, μ_s in bin j (width 1/[`GRID`]).
+    pub grid: [[Cell; GRID]; GRID],
+    /// Scenes with a speed-dependent friction law.
+    pub speed_dependent: Cell,
+    /// Scenes with μ_ct > 0.
+    pub cue_table: Cell,
+    /// By how the spin was drawn: none, cue-like, ±400 rad/s, extreme.
+    pub by_spin: [Cell; 4],
+    /// By speed band ([`SPEED_BANDS`]).
+    pub by_speed: [Cell; 3],
+}
+
+/// Bands of U in m/s (upper edges).
+pub const SPEED_BANDS: [f64; 3] = [0.1, 10.0, 100.0];
+
+impl Map {
+    /// Bin the scored scenes.
+    pub fn of(scored: &[Scored]) -> Self {
+        let mut map = Map {
+            all: Cell::default(),
+            by_mu_mu_s: [Cell::default(); 7],
+            by_mu_mu_s_no_ct: [Cell::default(); 7],
+            by_cut: [Cell::default(); 4],
+            grid: [[Cell::default(); GRID]; GRID],
+            speed_dependent: Cell::default(),
+            cue_table: Cell::default(),
+            by_spin: [Cell::default(); 4],
+            by_speed: [Cell::default(); 3],
+        };
+        for s in scored {
+            let mu = s.scene.mu();
+            let mu_s = s.scene.scene.mu_s as f64;
+            map.all.add(s);
+            map.by_mu_mu_s[band(mu * mu_s, &MU_MU_S_BANDS)].add(s);
+            if s.scene.mu_ct == 0.0 {
+                map.by_mu_mu_s_no_ct[band(mu * mu_s, &MU_MU_S_BANDS)].add(s);
+            }
+            map.by_cut[band(s.scene.cut_deg.abs(), &CUT_BANDS)].add(s);
+            let bin = |x: f64| ((x * GRID as f64) as usize).min(GRID - 1);
+            map.grid[bin(mu)][bin(mu_s)].add(s);
+            if matches!(s.scene.friction, FrictionLaw::SpeedDependent { .. }) {
+                map.speed_dependent.add(s);
+            }
+            if s.scene.mu_ct > 0.0 {
+                map.cue_table.add(s);
+            }
+            map.by_spin[s.scene.spin_draw as usize].add(s);
+            map.by_speed[band(s.scene.scene.speed(), &SPEED_BANDS)].add(s);
+        }
+        map
+    }
+
+    /// Markdown tables: per model, the share within each threshold by region.
+    pub fn markdown(&self) -> String {
+        let mut out = String::new();
+        let pct = |x: f64| format!("{:.1}", 100.0 * x);
+        let mut table = |title: &str, rows: Vec<(String, &Cell)>| {
+            let _ = writeln!(out, "\n#### {title}\n");
+            let _ = write!(out, "| region | scenes |");
+            for (name, _) in MODELS {
+                let _ = write!(out, " {name} |");
+            }
+            let _ = write!(out, "\n|---|---|");
+            for _ in MODELS {
+                let _ = write!(out, "---|");
+            }
+            out.push('\n');
+            for (label, cell) in rows {
+                let _ = write!(out, "| {label} | {} |", cell.count);
+                for m in 0..MODELS.len() {
+                    let _ = write!(
+                        out,
+                        " {} / {} / {} |",
+                        pct(cell.share(m, 0)),
+                        pct(cell.share(m, 1)),
+                        pct(cell.share(m, 2))
+                    );
+                }
+                out.push('\n');
+            }
+        };
+        let mut rows = vec![("all".to_string(), &self.all)];
+        let mut lo = 0.0;
+        for (i, &hi) in MU_MU_S_BANDS.iter().enumerate() {
+            let open = if i == 0 { "[" } else { "(" };
+            rows.push((format!("μ·μ_s {open}{lo}, {hi}]"), &self.by_mu_mu_s[i]));
+            lo = hi;
+        }
+        table("By μ·μ_s: % within 0.05 % / 0.5 % / 5 % of U", rows);
+        let mut rows = Vec::new();
+        let mut lo = 0.0;
+        for (i, &hi) in MU_MU_S_BANDS.iter().enumerate() {
+            let open = if i == 0 { "[" } else { "(" };
+            rows.push((
+                format!("μ·μ_s {open}{lo}, {hi}]"),
+                &self.by_mu_mu_s_no_ct[i],
+            ));
+            lo = hi;
+        }
+        table(
+            "By μ·μ_s, μ_ct = 0 only: % within 0.05 % / 0.5 % / 5 % of U",
+            rows,
+        );
+        let mut rows = Vec::new();
+        let mut lo = 0.0;
+        for (i, &hi) in CUT_BANDS.iter().enumerate() {
+            let open = if i == 0 { "[" } else { "(" };
+            rows.push((format!("\\|φ\\| {open}{lo}°, {hi}°)"), &self.by_cut[i]));
+            lo = hi;
+        }
+        let mut lo = 0.0;
+        for (i, &hi) in SPEED_BANDS.iter().enumerate() {
+            rows.push((format!("U ({lo}, {hi}] m/s"), &self.by_speed[i]));
+            lo = hi;
+        }
+        for (i, label) in [
+            "spin: none",
+            "spin: cue-like",
+            "spin: uniform ±400 rad/s",
+            "spin: extreme, to 10⁴ rad/s",
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            rows.push((label.to_string(), &self.by_spin[i]));
+        }
+        rows.push(("μ(v) (speed-dependent)".to_string(), &self.speed_dependent));
+        rows.push(("μ_ct > 0".to_string(), &self.cue_table));
+        table(
+            "By cut, speed, spin, friction law and μ_ct: % within 0.05 % / 0.5 % / 5 % of U",
+            rows,
+        );
+        let _ = write!(
+            out,
+            "\n#### Worst max(\\|Δv\\|, R\\|Δω\\|)/U and worst throw error (object ball ≥ {} % of U) by μ·μ_s\n\n| μ·μ_s up to |",
+            100.0 * MIN_OBJECT_SPEED
+        );
+        for (name, _) in MODELS {
+            let _ = write!(out, " {name} |");
+        }
+        let _ = write!(out, "\n|---|");
+        for _ in MODELS {
+            let _ = write!(out, "---|");
+        }
+        out.push('\n');
+        for (i, &hi) in MU_MU_S_BANDS.iter().enumerate() {
+            let c = &self.by_mu_mu_s[i];
+            let _ = write!(out, "| {hi} |");
+            for m in 0..MODELS.len() {
+                let _ = write!(
+                    out,
+                    " {:.2} %, {:.2}° |",
+                    100.0 * c.worst[m],
+                    c.worst_throw_moving[m]
+                );
+            }
+            out.push('\n');
+        }
+        let _ = writeln!(
+            out,
+            "\n#### Worst case per model (all scenes)\n\n| model | worst max(\\|Δv\\|, R\\|Δω\\|)/U | worst throw error | worst throw error, object ball ≥ {} % of U | model errors |\n|---|---|---|---|---|",
+            100.0 * MIN_OBJECT_SPEED
+        );
+        for (m, (name, _)) in MODELS.iter().enumerate() {
+            let _ = writeln!(
+                out,
+                "| {name} | {:.3e} | {:.3}° | {:.3}° | {} |",
+                self.all.worst[m],
+                self.all.worst_throw[m],
+                self.all.worst_throw_moving[m],
+                self.all.failed[m]
+            );
+        }
+        let _ = writeln!(
+            out,
+            "\nAuto(1e-3) within its tolerance (1e-3 of U): {:.2} % of the scenes ({} of {}); worst {:.1}× the tolerance.",
+            100.0 * self.all.auto_within_tolerance as f64 / self.all.count.max(1) as f64,
+            self.all.auto_within_tolerance,
+            self.all.count,
+            self.all.worst[AUTO] / AUTO_TOLERANCE
+        );
+        out
+    }
+
+    /// An SVG heat map: one row of panels per model, one panel per threshold, each a
+    /// [`GRID`]² grid over μ (x, 0 → 1) and μ_s (y, 0 → 1, up), coloured by the share of
+    /// the bin's scenes within the threshold (red 0 % → yellow 50 % → green 100 %).
+    pub fn svg(&self) -> String {
+        const CELL: f64 = 18.0;
+        const PANEL: f64 = CELL * GRID as f64;
+        const GAP: f64 = 40.0;
+        const LEFT: f64 = 100.0;
+        const TOP: f64 = 50.0;
+        let width = LEFT + 3.0 * (PANEL + GAP);
+        let height = TOP + MODELS.len() as f64 * (PANEL + GAP) + 40.0;
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" font-family="sans-serif" font-size="12">"#
+        );
+        let _ = writeln!(
+            s,
+            r#"<rect width="100%" height="100%" fill="white"/><text x="{LEFT}" y="20" font-size="14">Share of scenes within 0.05 % / 0.5 % / 5 % of U, bins of μ (x, 0–1) × μ_s (y, 0–1, up); red 0 %, yellow 50 %, green 100 %; {} scenes</text>"#,
+            self.all.count
+        );
+        for (t, label) in ["within 0.05 % of U", "within 0.5 % of U", "within 5 % of U"]
+            .iter()
+            .enumerate()
+        {
+            let x = LEFT + t as f64 * (PANEL + GAP);
+            let _ = writeln!(s, r#"<text x="{x}" y="{}">{label}</text>"#, TOP - 8.0);
+        }
+        for (m, (name, _)) in MODELS.iter().enumerate() {
+            let y0 = TOP + m as f64 * (PANEL + GAP);
+            let _ = writeln!(s, r#"<text x="8" y="{}">{name}</text>"#, y0 + PANEL / 2.0);
+            for t in 0..3 {
+                let x0 = LEFT + t as f64 * (PANEL + GAP);
+                for (i, column) in self.grid.iter().enumerate() {
+                    for (j, cell) in column.iter().enumerate() {
+                        let share = cell.share(m, t);
+                        let (r, g) = if share < 0.5 {
+                            (220.0, 440.0 * share)
+                        } else {
+                            (440.0 * (1.0 - share), 200.0)
+                        };
+                        let _ = writeln!(
+                            s,
+                            r#"<rect x="{:.0}" y="{:.0}" width="{CELL}" height="{CELL}" fill="rgb({:.0},{:.0},60)"><title>{name}, μ {:.1}–{:.1}, μ_s {:.1}–{:.1}: {:.1} % of {}</title></rect>"#,
+                            x0 + i as f64 * CELL,
+                            y0 + PANEL - (j + 1) as f64 * CELL,
+                            r,
+                            g,
+                            i as f64 / GRID as f64,
+                            (i + 1) as f64 / GRID as f64,
+                            j as f64 / GRID as f64,
+                            (j + 1) as f64 / GRID as f64,
+                            100.0 * share,
+                            cell.count
+                        );
+                    }
+                }
+                let _ = writeln!(
+                    s,
+                    r#"<rect x="{x0}" y="{y0}" width="{PANEL}" height="{PANEL}" fill="none" stroke="black"/><text x="{x0}" y="{}" font-size="10">0</text><text x="{}" y="{}" font-size="10">μ 1</text><text x="{}" y="{}" font-size="10">μ_s 1</text>"#,
+                    y0 + PANEL + 12.0,
+                    x0 + PANEL - 18.0,
+                    y0 + PANEL + 12.0,
+                    x0 - 30.0,
+                    y0 + 10.0
+                );
+            }
+        }
+        s.push_str("</svg>\n");
+        s
+    }
+}
