@@ -1,7 +1,7 @@
 //! The domain map of docs/accuracy-domain.md: every model against the reference solver
 //! on `--scenes N` seeded scenes of the whole accepted domain
-//! (`cuesight_host::domain`), printed as Markdown tables; with `--out DIR`, also
-//! written to `DIR/accuracy-domain-tables.md` and `DIR/accuracy-domain.svg`.
+//! (`cuesight_host::domain`), printed as Markdown tables with the worst scenes; with
+//! `--out DIR`, the heat map is written to `DIR/accuracy-domain.svg`.
 //!
 //! ```sh
 //! cargo run --release -p cuesight-host --example accuracy_domain -- --scenes 100000 --out docs/
@@ -106,7 +106,6 @@ fn main() {
     }
     if let Some(dir) = out {
         std::fs::create_dir_all(&dir).expect("create --out");
-        std::fs::write(dir.join("accuracy-domain-tables.md"), &tables).expect("write tables");
         std::fs::write(dir.join("accuracy-domain.svg"), map.svg()).expect("write svg");
     }
 }

@@ -540,16 +540,19 @@ impl Map {
         }
         let _ = writeln!(
             out,
-            "\n#### Worst case per model (all scenes)\n\n| model | worst max(\\|Δv\\|, R\\|Δω\\|)/U | worst throw error | worst throw error, object ball ≥ {} % of U | model errors |\n|---|---|---|---|---|",
+            "\n#### Worst case per model (all scenes)\n\n| model | worst max(\\|Δv\\|, R\\|Δω\\|)/U | worst throw error | worst throw error, object ball ≥ {} % of U | scenes outside 0.05 % / 0.5 % / 5 % of U | model errors |\n|---|---|---|---|---|---|",
             100.0 * MIN_OBJECT_SPEED
         );
         for (m, (name, _)) in MODELS.iter().enumerate() {
             let _ = writeln!(
                 out,
-                "| {name} | {:.3e} | {:.3}° | {:.3}° | {} |",
+                "| {name} | {:.3e} | {:.3}° | {:.3}° | {} / {} / {} | {} |",
                 self.all.worst[m],
                 self.all.worst_throw[m],
                 self.all.worst_throw_moving[m],
+                self.all.count - self.all.within[m][0],
+                self.all.count - self.all.within[m][1],
+                self.all.count - self.all.within[m][2],
                 self.all.failed[m]
             );
         }
