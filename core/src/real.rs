@@ -31,6 +31,14 @@ pub trait Real:
     fn of_f64(x: f64) -> Self {
         Self::of(x as f32)
     }
+    /// The same constant given at both precisions (`narrow` the `f32` rounding of
+    /// `wide`, done at compile time): each precision takes its own, and no `f64` is
+    /// converted at run time on an `f32` evaluation (on the Cortex-M4F that would be
+    /// a software `__aeabi_d2f`).
+    fn of_pair(wide: f64, narrow: f32) -> Self {
+        let _ = wide;
+        Self::of(narrow)
+    }
     /// Machine epsilon (spacing of the values just above 1), for relative tolerances.
     fn epsilon() -> Self {
         Self::of(f32::EPSILON)
@@ -164,6 +172,10 @@ impl Real for f64 {
     #[inline(always)]
     fn of_f64(x: f64) -> Self {
         x
+    }
+    #[inline(always)]
+    fn of_pair(wide: f64, _narrow: f32) -> Self {
+        wide
     }
     #[inline(always)]
     fn epsilon() -> Self {

@@ -70,6 +70,17 @@ const RULE: [(f64, f64); NODES] = [
     (0.980_144_928_248_768_2, 0.050_614_268_145_188_39),
 ];
 
+/// [`RULE`] rounded to `f32` at compile time (what `R::of_f64` gave at run time).
+const RULE_F32: [(f32, f32); NODES] = {
+    let mut rule = [(0.0, 0.0); NODES];
+    let mut i = 0;
+    while i < NODES {
+        rule[i] = (RULE[i].0 as f32, RULE[i].1 as f32);
+        i += 1;
+    }
+    rule
+};
+
 /// `k_y = 2(1+ν)/ν` for `ν = 2/5` (seed eq. (28): `2β_y`).
 pub(super) const K_Y: f32 = 7.0;
 
@@ -209,15 +220,15 @@ impl<R: Real> SlipPath<R> {
             // Panel k: nodes ρ = 1 − (from + (k + t) w).
             let start = R::of(panel as f32);
             let (mut n, mut v) = (R::ZERO, R::ZERO);
-            for &(t, w) in RULE.iter() {
-                let rho = R::ONE - (from + (start + R::of_f64(t)) * width);
+            for (&(t, w), &(t32, w32)) in RULE.iter().zip(RULE_F32.iter()) {
+                let rho = R::ONE - (from + (start + R::of_pair(t, t32)) * width);
                 let tau = self.lean_power(rho);
                 let (g, z_rate) = self.g(rho, tau);
                 let inverse_mu = match self.law {
                     FrictionLaw::Constant(_) => R::ONE,
                     FrictionLaw::SpeedDependent { .. } => R::ONE / self.mu(self.speed * rho * g),
                 };
-                let weight = R::of_f64(w) * inverse_mu;
+                let weight = R::of_pair(w, w32) * inverse_mu;
                 n = n + weight * g;
                 // ρ^{k_z} = ρ · ρ^{k_z−1}.
                 v = v + weight * self.cz * (rho * z_rate - z_ref) * g;
