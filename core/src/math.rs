@@ -166,7 +166,7 @@ pub fn sin_cos(x: f32) -> (f32, f32) {
 pub fn exp(x: f32) -> f32 {
     #[cfg(feature = "libm")]
     {
-        libm::expf(x)
+        accurate::exp(x)
     }
     #[cfg(feature = "micromath")]
     {
@@ -179,7 +179,7 @@ pub fn exp(x: f32) -> f32 {
 pub fn ln(x: f32) -> f32 {
     #[cfg(feature = "libm")]
     {
-        libm::logf(x)
+        accurate::ln(x)
     }
     #[cfg(feature = "micromath")]
     {
@@ -192,7 +192,7 @@ pub fn ln(x: f32) -> f32 {
 pub fn exp_m1(x: f32) -> f32 {
     #[cfg(feature = "libm")]
     {
-        libm::expm1f(x)
+        accurate::exp_m1(x)
     }
     #[cfg(feature = "micromath")]
     {
@@ -210,7 +210,7 @@ pub fn exp_m1(x: f32) -> f32 {
 pub fn ln_1p(x: f32) -> f32 {
     #[cfg(feature = "libm")]
     {
-        libm::log1pf(x)
+        accurate::ln_1p(x)
     }
     #[cfg(feature = "micromath")]
     {
@@ -227,7 +227,7 @@ pub fn ln_1p(x: f32) -> f32 {
 pub fn atan2(y: f32, x: f32) -> f32 {
     #[cfg(feature = "libm")]
     {
-        libm::atan2f(y, x)
+        accurate::atan2(y, x)
     }
     #[cfg(feature = "micromath")]
     {
