@@ -390,12 +390,25 @@ pub fn estimate_raw(
     if !cuesight::math::is_finite(scale) || scale == 0.0 {
         return Err(StrokeError::NotFinite { index: 0 });
     }
-    run(
-        samples.len(),
-        |i| samples.get(i).map_or(f32::NAN, |&a| f32::from(a) * scale),
-        None::<NoPitch>,
-        config,
-    )
+    let raw = Raw { samples, scale };
+    run(samples.len(), |i| raw.at(i), None::<NoPitch>, config)
+}
+
+/// Raw accelerometer words and their scale, read one sample at a time.
+struct Raw<'a> {
+    samples: &'a [i16],
+    scale: f32,
+}
+
+impl Raw<'_> {
+    /// Sample `i` in m/s² (NaN past the end). Out of line: the estimator reads samples
+    /// in eight places, and each inlined copy cost flash on the device.
+    #[inline(never)]
+    fn at(&self, i: usize) -> f32 {
+        self.samples
+            .get(i)
+            .map_or(f32::NAN, |&a| f32::from(a) * self.scale)
+    }
 }
 
 /// Gyro-aided [`estimate`]: `pitch_rate[i]` (rad/s, same instants as `accel[i]`) is the
@@ -468,6 +481,10 @@ struct Sum {
 }
 
 impl Sum {
+    /// Out of line: called in eight places, each inlined copy cost flash on the device
+    /// (260 B of the release image), and a call per sample is nothing next to the
+    /// estimate's one pass over the window.
+    #[inline(never)]
     fn add(&mut self, x: f32) {
         let t = self.sum + x;
         if cuesight::math::abs(self.sum) >= cuesight::math::abs(x) {
