@@ -216,16 +216,16 @@ impl Collide {
     /// cut, then spin; errors name the field.
     pub fn prepare(&self, defaults: &Defaults) -> Result<PreparedCollide, LinkError> {
         let Defaults { params, model } = self.overrides().apply(defaults)?;
-        let impact = match (self.spin, self.roll) {
-            (Some(_), true) => return Err(LinkError::SpinAndRoll),
-            (spin, false) => {
-                Impact::from_cut_degrees(self.speed, self.cut, spin.unwrap_or([0.0; 3]))?
-            }
-            (None, true) => {
-                // Speed and cut first, so errors name them; then spin up.
-                let v = Impact::from_cut_degrees(self.speed, self.cut, [0.0; 3])?.velocity();
-                Impact::rolling([v.x, v.y], params.radius())?
-            }
+        if self.roll && self.spin.is_some() {
+            return Err(LinkError::SpinAndRoll);
+        }
+        // Speed and cut first, so errors name them; then, for a rolling ball, spin up.
+        let cut = Impact::from_cut_degrees(self.speed, self.cut, self.spin.unwrap_or([0.0; 3]))?;
+        let impact = if self.roll {
+            let v = cut.velocity();
+            Impact::rolling([v.x, v.y], params.radius())?
+        } else {
+            cut
         };
         Ok(PreparedCollide {
             params,
