@@ -11,6 +11,8 @@
 //!   [`StrokeEstimate::strike`] feeds the speed to the cue-strike model
 //!   ([`cuesight::strike`], TP A.30) for ball speed and spin.
 //! * [`trigger`]: [`ImpactTrigger`] tells the capture loop when the ring holds the stroke.
+//! * [`streaming`]: [`StreamingEstimator`], the same estimate one sample at a time in
+//!   1.4 KiB, with no window: a stroke (or a typed fault) on the impact sample.
 //!
 //! Measured accuracy and the models behind it: `docs/sensors.md`.
 //!
@@ -48,6 +50,7 @@
 pub mod glitch;
 pub mod lsm6dsox;
 pub mod ring;
+pub mod streaming;
 pub mod stroke;
 pub mod trigger;
 
@@ -57,6 +60,9 @@ pub use lsm6dsox::{
     GYRO_RADPS_PER_LSB,
 };
 pub use ring::RingBuffer;
+pub use streaming::{
+    StreamConfig, StreamConfigError, StreamEvent, StreamFault, StreamStroke, StreamingEstimator,
+};
 pub use stroke::{
     estimate, estimate_raw, estimate_raw_with_pitch, estimate_with_pitch, ConfigField,
     StrokeConfig, StrokeError, StrokeEstimate,

@@ -1,0 +1,292 @@
+//! Settings of the streaming estimator, their validation and the sample counts derived
+//! from them (all computed once, in a `const fn`).
+
+use core::fmt;
+
+use crate::lsm6dsox::{ACCEL_MPS2_PER_LSB, GYRO_RADPS_PER_LSB};
+use crate::stroke::{ConfigField, StrokeConfig};
+
+/// Samples of history the estimator keeps (prefix sums, [`super::StreamingEstimator`]).
+/// A power of two: every ring index is `k & (RING − 1)`, in range by construction.
+pub(crate) const RING: usize = 128;
+
+/// Highest accepted sample rate (Hz): the rest boundary lies `W + guard` = 12.4 ms of
+/// samples behind the motion test, and that delay must fit in the ring (124 samples at
+/// 10 kHz). The LSM6DSOX's highest ODR is 6.66 kHz (7.9 kHz at the largest trim).
+pub const MAX_STREAM_RATE_HZ: f32 = 10_000.0;
+
+/// Streaming estimator settings. The stroke detection settings are the windowed
+/// estimator's ([`StrokeConfig`], same meaning and defaults); the rest are the raw
+/// words' scales and what a stream needs beyond one window.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct StreamConfig {
+    /// Rate, thresholds, rest tests, full scale and cue elevation, as for the windowed
+    /// estimator; the rate must be in `[500, 10 000]` Hz here.
+    pub stroke: StrokeConfig,
+    /// Acceleration per raw word (m/s² per LSB), negative if the sensor's axis points
+    /// away from the tip. Default [`ACCEL_MPS2_PER_LSB`] (±16 g).
+    pub accel_scale: f32,
+    /// Pitch rate per raw word (rad/s per LSB), with the sign that makes a rising butt
+    /// positive. Default [`GYRO_RADPS_PER_LSB`] (±2000 dps).
+    pub pitch_scale: f32,
+    /// A rest at least this long (s) replaces an earlier, longer one as the start of the
+    /// integration. Default 0.3 s (see `docs/sensors.md` §11: a smooth move's
+    /// acceleration plateau passes the rest tests for at most ~0.2 s).
+    pub trusted_rest: f32,
+    /// Longest accepted stroke, from the end of the rest to the impact (s). An
+    /// integration running longer is dropped. Default 10 s; at most 60 s.
+    pub max_stroke: f32,
+    /// A second impact starting within this time (s) of the first is reported as a
+    /// double hit. Default 0.1 s.
+    pub double_hit_window: f32,
+    /// Slowest cue speed reported as a stroke (m/s); a slower or backward integral is
+    /// [`super::StreamFault::NotForward`]. Default 0.05 m/s.
+    pub min_speed: f32,
+}
+
+impl StreamConfig {
+    /// Defaults for a sample rate in Hz (LSM6DSOX at ±16 g and ±2000 dps).
+    pub const fn new(sample_rate_hz: f32) -> Self {
+        Self {
+            stroke: StrokeConfig::new(sample_rate_hz),
+            accel_scale: ACCEL_MPS2_PER_LSB,
+            pitch_scale: GYRO_RADPS_PER_LSB,
+            trusted_rest: 0.3,
+            max_stroke: 10.0,
+            double_hit_window: 0.1,
+            min_speed: 0.05,
+        }
+    }
+}
+
+/// A [`StreamConfig`] field that failed validation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum StreamConfigError {
+    /// A field of `stroke` other than the rate, with the windowed estimator's range.
+    Stroke(ConfigField),
+    /// `stroke.sample_rate_hz` not in `[500, 10 000]` Hz.
+    SampleRate,
+    /// `accel_scale` not a finite, non-zero number.
+    AccelScale,
+    /// `pitch_scale` not a finite, non-zero number.
+    PitchScale,
+    /// `trusted_rest` not in `[min_rest, 60]` s.
+    TrustedRest,
+    /// `max_stroke` not in `(0, 60]` s.
+    MaxStroke,
+    /// `double_hit_window` not in `(0, 1]` s.
+    DoubleHitWindow,
+    /// `min_speed` not a finite number ≥ 0.
+    MinSpeed,
+}
+
+impl fmt::Display for StreamConfigError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (name, range) = match self {
+            StreamConfigError::Stroke(field) => (field.name(), field.valid_range()),
+            StreamConfigError::SampleRate => ("sample_rate_hz", "in [500, 10000] Hz"),
+            StreamConfigError::AccelScale => ("accel_scale", "a finite, non-zero number"),
+            StreamConfigError::PitchScale => ("pitch_scale", "a finite, non-zero number"),
+            StreamConfigError::TrustedRest => ("trusted_rest", "in [min_rest, 60] s"),
+            StreamConfigError::MaxStroke => ("max_stroke", "in (0, 60] s"),
+            StreamConfigError::DoubleHitWindow => ("double_hit_window", "in (0, 1] s"),
+            StreamConfigError::MinSpeed => ("min_speed", "a finite number >= 0 (m/s)"),
+        };
+        write!(f, "stream config: {name} must be {range}")
+    }
+}
+
+impl core::error::Error for StreamConfigError {}
+
+/// Sample counts and unit conversions derived from a validated [`StreamConfig`]. Every
+/// acceleration is in raw counts (`m/s² / |accel_scale|`), forward positive.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Plan {
+    /// Sample period (s).
+    pub dt: f32,
+    /// |accel_scale| (m/s² per count) and its inverse.
+    pub scale: f32,
+    pub inv_scale: f32,
+    /// The raw accelerometer word is negated (axis pointing to the butt).
+    pub flip: bool,
+    /// |pitch_scale| (rad/s per count), its inverse, and the word's sign flip.
+    pub pitch_scale: f32,
+    pub inv_pitch_scale: f32,
+    pub pitch_flip: bool,
+    /// Block length (25 ms), and its inverse.
+    pub block: u32,
+    pub inv_block: f32,
+    /// Blocks a rest needs (`min_rest`, at least 3) and blocks of a trusted rest.
+    pub rest_blocks: u32,
+    pub trusted_blocks: u32,
+    /// Rest-window bucket (blocks, ~1 s): the bias is the mean of the last 1–2 s of rest.
+    pub bucket: u32,
+    /// Moving-average window `W` (2.4 ms), guard (10 ms), delay `W + guard`.
+    pub window: u32,
+    pub guard: u32,
+    pub delay: u32,
+    /// Impact crossings closer than this (5 ms) belong to one impact.
+    pub gap: u32,
+    /// `double_hit_window` and `max_stroke` in samples.
+    pub double_hit: u32,
+    pub max_stroke: u32,
+    /// Thresholds in counts: impact, onset drop, rest level tolerance; the rest-noise
+    /// limit and `W · motion_floor`, squared.
+    pub impact: f32,
+    pub onset_drop: f32,
+    pub level_tolerance: f32,
+    pub noise_limit_sq: f32,
+    pub floor_sq: f32,
+    /// A word at or beyond this magnitude is at the sensor's full scale.
+    pub rail: i32,
+    /// Slowest reported speed (m/s) and cue elevation at rest (rad).
+    pub min_speed: f32,
+    pub elevation: f32,
+}
+
+/// `round(seconds · rate)`, at least `at_least` (casts saturate; inputs are bounded).
+const fn samples(seconds: f32, rate: f32, at_least: u32) -> u32 {
+    let n = (seconds * rate + 0.5) as u32;
+    if n < at_least {
+        at_least
+    } else {
+        n
+    }
+}
+
+/// `x` finite and `> 0` (NaN-safe).
+const fn positive(x: f32) -> bool {
+    x > 0.0 && x < f32::INFINITY
+}
+
+/// `x` finite and non-zero.
+const fn nonzero(x: f32) -> bool {
+    (x > 0.0 && x < f32::INFINITY) || (x < 0.0 && x > f32::NEG_INFINITY)
+}
+
+/// `|x|` for a finite `x` (a `const` comparison).
+const fn magnitude(x: f32) -> f32 {
+    if x < 0.0 {
+        -x
+    } else {
+        x
+    }
+}
+
+impl Plan {
+    /// Validate `config` (the windowed estimator's checks, then the stream's own).
+    pub const fn new(config: &StreamConfig) -> Result<Plan, StreamConfigError> {
+        let s = &config.stroke;
+        let rate = s.sample_rate_hz;
+        if !(rate >= 500.0 && rate <= MAX_STREAM_RATE_HZ) {
+            return Err(StreamConfigError::SampleRate);
+        }
+        if !positive(s.impact_threshold) {
+            return Err(StreamConfigError::Stroke(ConfigField::ImpactThreshold));
+        }
+        if !positive(s.onset_drop) {
+            return Err(StreamConfigError::Stroke(ConfigField::OnsetDrop));
+        }
+        if !positive(s.rest_noise_limit) {
+            return Err(StreamConfigError::Stroke(ConfigField::RestNoiseLimit));
+        }
+        if !positive(s.rest_level_tolerance) {
+            return Err(StreamConfigError::Stroke(ConfigField::RestLevelTolerance));
+        }
+        if !positive(s.motion_floor) {
+            return Err(StreamConfigError::Stroke(ConfigField::MotionFloor));
+        }
+        if !(positive(s.min_rest) && s.min_rest <= 10.0) {
+            return Err(StreamConfigError::Stroke(ConfigField::MinRest));
+        }
+        // NaN-safe: only a full scale strictly above the threshold is accepted.
+        if !(s.full_scale > s.impact_threshold) {
+            return Err(StreamConfigError::Stroke(ConfigField::FullScale));
+        }
+        if !(s.cue_elevation >= -1.2 && s.cue_elevation <= 1.2) {
+            return Err(StreamConfigError::Stroke(ConfigField::CueElevation));
+        }
+        if !nonzero(config.accel_scale) {
+            return Err(StreamConfigError::AccelScale);
+        }
+        if !nonzero(config.pitch_scale) {
+            return Err(StreamConfigError::PitchScale);
+        }
+        if !(config.trusted_rest >= s.min_rest && config.trusted_rest <= 60.0) {
+            return Err(StreamConfigError::TrustedRest);
+        }
+        if !(positive(config.max_stroke) && config.max_stroke <= 60.0) {
+            return Err(StreamConfigError::MaxStroke);
+        }
+        if !(positive(config.double_hit_window) && config.double_hit_window <= 1.0) {
+            return Err(StreamConfigError::DoubleHitWindow);
+        }
+        if !(config.min_speed >= 0.0 && config.min_speed < f32::INFINITY) {
+            return Err(StreamConfigError::MinSpeed);
+        }
+        let scale = magnitude(config.accel_scale);
+        let pitch_scale = magnitude(config.pitch_scale);
+        // The windowed estimator's sample counts (`stroke.rs`, `StrokeConfig::validate`).
+        let block = samples(0.025, rate, 8);
+        let min_rest = samples(s.min_rest, rate, block);
+        let rest_blocks = {
+            let n = min_rest.div_ceil(block);
+            if n < 3 {
+                3
+            } else {
+                n
+            }
+        };
+        let trusted_blocks = samples(config.trusted_rest, rate, block).div_ceil(block);
+        let window = samples(0.0024, rate, 4);
+        let guard = samples(0.010, rate, 2);
+        let motion_floor = s.motion_floor / scale * window as f32;
+        let noise_limit = s.rest_noise_limit / scale;
+        // 0.999 of full scale, in whole counts, never above the i16 rail (a clipped
+        // word is saturated whatever the configured full scale).
+        let rail = {
+            let r = 0.999 * s.full_scale / scale;
+            if r >= 32_767.0 {
+                32_767
+            } else {
+                let t = r as i32;
+                if (t as f32) < r {
+                    t + 1
+                } else {
+                    t
+                }
+            }
+        };
+        Ok(Plan {
+            dt: 1.0 / rate,
+            scale,
+            inv_scale: 1.0 / scale,
+            flip: config.accel_scale < 0.0,
+            pitch_scale,
+            inv_pitch_scale: 1.0 / pitch_scale,
+            pitch_flip: config.pitch_scale < 0.0,
+            block,
+            inv_block: 1.0 / block as f32,
+            rest_blocks,
+            trusted_blocks,
+            bucket: samples(1.0, rate, 1).div_ceil(block),
+            window,
+            guard,
+            delay: window + guard,
+            gap: samples(0.005, rate, 2),
+            double_hit: samples(config.double_hit_window, rate, 1),
+            max_stroke: samples(config.max_stroke, rate, 1),
+            impact: s.impact_threshold / scale,
+            onset_drop: s.onset_drop / scale,
+            level_tolerance: s.rest_level_tolerance / scale,
+            noise_limit_sq: noise_limit * noise_limit,
+            floor_sq: motion_floor * motion_floor,
+            rail,
+            min_speed: config.min_speed,
+            elevation: s.cue_elevation,
+        })
+    }
+}

@@ -1,0 +1,240 @@
+//! Streaming stroke estimator: one sample at a time, constant memory, no sample window.
+//!
+//! The windowed estimator ([`crate::stroke`]) needs the whole stroke in a buffer (3.6 s,
+//! 48 kB at 6.66 kHz). This one keeps block statistics, prefix sums and a 128-sample
+//! ring of them ([`StreamingEstimator`] is 1.4 KiB), and reports each stroke on the
+//! sample that crosses the impact threshold. The steps are the windowed estimator's
+//! (`stroke.rs` module docs, `docs/sensors.md` §4), rearranged so that each is decided
+//! when its last sample arrives:
+//!
+//! 1. **Rest** ([`rest`]): 25 ms blocks; a run of blocks whose standard deviation is
+//!    at most `rest_noise_limit` and whose means lie within `rest_level_tolerance` of
+//!    the run's first block, holding no impact-sized or full-scale sample. Its level
+//!    and noise come from the blocks after the first (the last 1–2 s of them).
+//! 2. **Rest end**: once a run has two blocks, every sample tests the moving average of
+//!    the last `W` samples (2.4 ms) against the level: a departure by more than
+//!    `max(6 σ/√W, motion_floor)` is the start of motion, and the rest ends `guard`
+//!    (10 ms) before that window. A run that fails its block tests without a departure
+//!    ends at its last block, `guard` earlier (the windowed estimator's fallback).
+//! 3. **Which rest**: a run of at least `min_rest` whose motion starts becomes the
+//!    integration's origin if there is none, or if it is at least as long as the
+//!    current one (the windowed estimator's "longest, ties to the later"), or at least
+//!    `trusted_rest` long (a pause at the back), or the current one is older than
+//!    `max_stroke`. Runs shorter than the current origin and than `trusted_rest` are
+//!    the acceleration plateaus of a smooth move, not rests, and are ignored.
+//! 4. **Bias** = the mean of the rest window (offset + gravity along the cue); the
+//!    gyro's pitch-rate bias likewise.
+//! 5. **Integration** ([`integral`]) from the rest end: `V = Σ (a_i − bias) Δt`, exact
+//!    integer sums of the raw words, the bias subtracted once at the impact; with a
+//!    pitch rate, `g (cos θ₀ Δθ − sin θ₀ Δθ²/2)` added back per sample as in
+//!    [`crate::estimate_with_pitch`].
+//! 6. **Impact**: the first sample below `bias − impact_threshold` after the rest; the
+//!    onset is moved back (at most 4 samples) to the first sample `onset_drop` below
+//!    the mean of the 8 samples ending 4 before the crossing; samples from the onset on
+//!    are left out of the integral. Crossings less than 5 ms apart are one impact (its
+//!    ringing); a new one within `double_hit_window` is a double hit.
+//!
+//! Everything is per sample O(1): integer adds, a dozen f32 operations, no division,
+//! no square root, no trigonometry, no loop; each block end (every 25 ms) adds a few
+//! divisions, and the impact a loop of at most 5 steps. Indices into the ring are
+//! `k & 127` into a 128-entry array: no panic path. Nothing is NaN: a non-finite input
+//! is a [`StreamFault::NotFinite`] and is not used.
+
+mod config;
+mod event;
+mod integral;
+mod rest;
+
+pub use config::{StreamConfig, StreamConfigError, MAX_STREAM_RATE_HZ};
+pub use event::{StreamEvent, StreamFault, StreamStroke};
+
+use config::{Plan, RING};
+use integral::Stroke;
+use rest::{Block, Run};
+
+/// `k & MASK` is a ring index.
+const MASK: usize = RING - 1;
+
+/// Streaming cue-speed estimator. Feed every sample in order with [`Self::push_raw`]
+/// (raw words) or [`Self::push`] (SI units); call [`Self::finish`] when the stream ends.
+#[derive(Clone, Debug)]
+pub struct StreamingEstimator {
+    plan: Plan,
+    /// Samples pushed: the index of the next one.
+    index: u64,
+    /// Prefix sums of the acceleration and pitch-rate counts through the last sample
+    /// (wrapping: only differences over a bounded span are used).
+    p: i32,
+    c: i32,
+    /// `ring[k & MASK] = [P(k), C(k)]`, the prefix sums before sample `k`, for the last
+    /// `RING` values of `k`.
+    ring: [[i32; 2]; RING],
+    block: Block,
+    run: Run,
+    stroke: Stroke,
+    /// Elevation change from the rest (counts·samples) before each of the last 8 samples.
+    recent_tilt: [f32; 8],
+    /// Latest sample below the impact threshold.
+    last_crossing: Option<u64>,
+    /// The last reported impact's onset, and the last sample a double hit may start.
+    last_impact: Option<(u64, u64)>,
+    /// Latest sample at full scale.
+    last_saturated: Option<u64>,
+    /// The previous sample was not finite.
+    not_finite: bool,
+    /// `(g cos θ₀, g sin θ₀)`, computed at the first rest (m/s²).
+    gravity: Option<(f32, f32)>,
+}
+
+impl StreamingEstimator {
+    /// A validated estimator, at sample index 0.
+    pub const fn new(config: &StreamConfig) -> Result<Self, StreamConfigError> {
+        match Plan::new(config) {
+            Ok(plan) => Ok(Self::from_plan(plan)),
+            Err(e) => Err(e),
+        }
+    }
+
+    const fn from_plan(plan: Plan) -> Self {
+        Self {
+            plan,
+            index: 0,
+            p: 0,
+            c: 0,
+            ring: [[0; 2]; RING],
+            block: Block::new(),
+            run: Run::new(),
+            stroke: Stroke::new(),
+            recent_tilt: [0.0; 8],
+            last_crossing: None,
+            last_impact: None,
+            last_saturated: None,
+            not_finite: false,
+            gravity: None,
+        }
+    }
+
+    /// One sample of raw words: the accelerometer's cue axis and, for the gyro-aided
+    /// estimate, the pitch-rate axis (`None`: no gyro, a zero rate). The words are
+    /// scaled by the config's `accel_scale` and `pitch_scale`.
+    pub fn push_raw(&mut self, accel: i16, pitch: Option<i16>) -> Option<StreamEvent> {
+        let a = i32::from(accel);
+        let a = if self.plan.flip { -a } else { a };
+        let p = match pitch {
+            Some(w) if self.plan.pitch_flip => -i32::from(w),
+            Some(w) => i32::from(w),
+            None => 0,
+        };
+        self.step(a, p, true)
+    }
+
+    /// One sample in SI units: specific force along the cue, forward positive (m/s²),
+    /// and the pitch rate, butt rising positive (rad/s). Each is quantised to the
+    /// config's scale (the sensor's own resolution) and clipped to the i16 range, where
+    /// it counts as saturated. A NaN or infinite value gives
+    /// [`StreamFault::NotFinite`] (once per run of them).
+    pub fn push(&mut self, accel_mps2: f32, pitch_rate_radps: Option<f32>) -> Option<StreamEvent> {
+        let pitch = pitch_rate_radps.unwrap_or(0.0);
+        if !(cuesight::math::is_finite(accel_mps2) && cuesight::math::is_finite(pitch)) {
+            return self.step(0, 0, false);
+        }
+        let a = quantise(accel_mps2 * self.plan.inv_scale);
+        let p = quantise(pitch * self.plan.inv_pitch_scale);
+        self.step(a, p, true)
+    }
+
+    /// End of the stream: a stroke being integrated is reported as
+    /// [`StreamFault::EndedMidStroke`]. The estimator is then as new (index 0).
+    pub fn finish(&mut self) -> Option<StreamEvent> {
+        let event = self
+            .stroke
+            .active
+            .then_some(StreamEvent::Fault(StreamFault::EndedMidStroke {
+                rest_end: self.stroke.rest_end,
+                samples: self.index,
+            }));
+        *self = Self::from_plan(self.plan);
+        event
+    }
+
+    /// Samples pushed so far (the index the next one gets).
+    pub const fn samples(&self) -> u64 {
+        self.index
+    }
+
+    /// `true` while a stroke is being integrated (a rest has ended, no impact yet).
+    pub const fn in_stroke(&self) -> bool {
+        self.stroke.active
+    }
+
+    /// The per-sample step on counts (forward positive); `finite` is false for a
+    /// non-finite SI input (then `a = p = 0`).
+    fn step(&mut self, a: i32, p: i32, finite: bool) -> Option<StreamEvent> {
+        let n = self.index;
+        self.index = n + 1;
+        let mut event = None;
+        if finite {
+            self.not_finite = false;
+        } else {
+            if !self.not_finite {
+                event = Some(StreamEvent::Fault(StreamFault::NotFinite { index: n }));
+            }
+            self.not_finite = true;
+            self.stroke.active = false;
+            self.run.abandon();
+            self.block.bad = true;
+        }
+        self.p = self.p.wrapping_add(a);
+        self.c = self.c.wrapping_add(p);
+        self.ring[(n + 1) as usize & MASK] = [self.p, self.c];
+        let af = a as f32;
+        self.block_sample(af);
+        if a >= self.plan.rail || a <= -self.plan.rail {
+            self.block.bad = true;
+            self.last_saturated = Some(n);
+            if self.stroke.active && self.stroke.first_saturated.is_none() {
+                self.stroke.first_saturated = Some(n);
+            }
+        }
+        if af < -self.plan.impact {
+            self.block.bad = true; // a knock: no rest block
+        }
+        // Integrate before the motion test: a rest end found now already covers `n`.
+        if self.stroke.active {
+            self.integrate(n, p);
+        }
+        if self.run.armed {
+            self.motion_test(n);
+        }
+        let limit = if self.stroke.active {
+            self.stroke.limit
+        } else {
+            -self.plan.impact
+        };
+        if finite && af < limit {
+            if let Some(e) = self.crossing(n) {
+                event = Some(e);
+            }
+        }
+        if self.block.pos == self.plan.block {
+            self.end_block(n);
+        }
+        event
+    }
+
+    /// Prefix sum of the acceleration before sample `k` (`k` within the ring's reach).
+    fn prefix(&self, k: u64) -> i32 {
+        self.ring[k as usize & MASK][0]
+    }
+
+    /// Sample `i` in counts, from the prefix ring.
+    fn sample(&self, i: u64) -> f32 {
+        self.prefix(i + 1).wrapping_sub(self.prefix(i)) as f32
+    }
+}
+
+/// Nearest integer (ties away from zero), clipped to the i16 range.
+fn quantise(x: f32) -> i32 {
+    let r = if x >= 0.0 { x + 0.5 } else { x - 0.5 };
+    (r as i32).clamp(i32::from(i16::MIN), i32::from(i16::MAX))
+}

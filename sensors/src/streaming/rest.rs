@@ -1,0 +1,264 @@
+//! Rest detection: 25 ms block statistics, runs of still and level blocks, and the
+//! per-sample motion test that ends a rest (steps 1–3 of the module docs).
+
+use super::StreamingEstimator;
+
+/// The block being filled (counts).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Block {
+    /// Index of its first sample, and the acceleration prefix sum there.
+    start: u64,
+    p_start: i32,
+    c_start: i32,
+    /// Smallest and largest sum of `W` consecutive samples lying inside the block.
+    window_min: i32,
+    window_max: i32,
+    /// Its first sample: the variance is accumulated about it (shifted data), so the
+    /// f32 sum of squares stays small for a still block.
+    first: f32,
+    /// Samples so far.
+    pub pos: u32,
+    /// `Σ (a − first)²`.
+    ss: f32,
+    /// Holds a knock, a full-scale or non-finite sample, or a motion departure: not a
+    /// rest block.
+    pub bad: bool,
+    /// Prefix sums `guard` samples before the end of this block and of the previous one
+    /// (the rest end when a run fails its block tests without a departure).
+    guard_mark: [i32; 2],
+    prev_guard_mark: [i32; 2],
+}
+
+impl Block {
+    pub const fn new() -> Self {
+        Self {
+            start: 0,
+            p_start: 0,
+            c_start: 0,
+            window_min: i32::MAX,
+            window_max: i32::MIN,
+            first: 0.0,
+            pos: 0,
+            ss: 0.0,
+            bad: false,
+            guard_mark: [0; 2],
+            prev_guard_mark: [0; 2],
+        }
+    }
+}
+
+/// The current run of still, level blocks (counts).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Run {
+    /// Complete blocks in the run, the first included.
+    pub blocks: u32,
+    /// Mean of the first block: every later block's mean must lie within
+    /// `rest_level_tolerance` of it.
+    level0: f32,
+    /// Start of the rest window (the end of the run's first block, or a later bucket
+    /// boundary) and the prefix sums there.
+    pub rest_start: u64,
+    pub p_rest: i32,
+    pub c_rest: i32,
+    /// The run's first block `(start, P, C, window min, window max)`: it joins the rest
+    /// window at the rest end if none of its `W`-sums departs from the final level.
+    lead: (u64, i32, i32, i32, i32),
+    /// Blocks in the rest window, and the bucket boundary that becomes its start when
+    /// it reaches two buckets (so that it spans 1–2 s and its sums cannot wrap).
+    interior: u32,
+    mid: (u64, i32, i32),
+    /// The window's start has moved to a bucket boundary.
+    shifted: bool,
+    /// Mean variance of the rest window's blocks (counts²).
+    pub variance: f32,
+    /// The motion test runs (the run has a level: two blocks or more).
+    pub armed: bool,
+    /// `W ·` the rest window's mean, and the squared motion threshold
+    /// `max(36 W σ², (W · motion_floor)²)` (counts).
+    w_level: f32,
+    threshold_sq: f32,
+}
+
+impl Run {
+    pub const fn new() -> Self {
+        Self {
+            blocks: 0,
+            level0: 0.0,
+            rest_start: 0,
+            p_rest: 0,
+            c_rest: 0,
+            lead: (0, 0, 0, 0, 0),
+            interior: 0,
+            mid: (0, 0, 0),
+            shifted: false,
+            variance: 0.0,
+            armed: false,
+            w_level: 0.0,
+            threshold_sq: 0.0,
+        }
+    }
+
+    /// Drop the run (a departure, a fault).
+    pub fn abandon(&mut self) {
+        self.blocks = 0;
+        self.armed = false;
+    }
+}
+
+impl StreamingEstimator {
+    /// Block statistics of one sample (counts); the prefix sums are already updated.
+    pub(super) fn block_sample(&mut self, a: f32) {
+        let b = &mut self.block;
+        if b.pos == 0 {
+            b.first = a;
+        }
+        let d = a - b.first;
+        b.ss += d * d;
+        b.pos += 1;
+        if b.pos >= self.plan.window {
+            let back = self.ring
+                [(b.start + u64::from(b.pos - self.plan.window)) as usize & super::MASK][0];
+            let sum = self.p.wrapping_sub(back);
+            b.window_min = b.window_min.min(sum);
+            b.window_max = b.window_max.max(sum);
+        }
+        if b.pos == self.plan.block - self.plan.guard {
+            b.guard_mark = [self.p, self.c];
+        }
+    }
+
+    /// Step 2: the moving average of the last `W` samples, `(P(n+1) − P(n+1−W)) / W`,
+    /// against the rest level, as `|Σ − W·level|² > max(36 W σ², (W·floor)²)` (the
+    /// windowed estimator's `|mean − level| > max(6σ/√W, floor)`, squared, times W).
+    pub(super) fn motion_test(&mut self, n: u64) {
+        let back = self.prefix((n + 1).wrapping_sub(u64::from(self.plan.window)));
+        let deviation = self.p.wrapping_sub(back) as f32 - self.run.w_level;
+        if deviation * deviation > self.run.threshold_sq {
+            self.depart(n);
+        }
+    }
+
+    /// The motion test fired at sample `n`: the rest ends at `n + 1 − W − guard`.
+    fn depart(&mut self, n: u64) {
+        let run = self.run;
+        self.run.abandon();
+        // The block holding the departure is not a rest block: a new run starts after it.
+        self.block.bad = true;
+        let rest_end = (n + 1).saturating_sub(u64::from(self.plan.delay));
+        if self.qualifies(&run, rest_end) {
+            let [p, c] = self.ring[rest_end as usize & super::MASK];
+            self.anchor(n, rest_end, p, c, &run);
+        }
+    }
+
+    /// Step 3: `run`, ending at `rest_end`, is a rest (`min_rest` of blocks, half a
+    /// block of rest window) that replaces the integration's current origin.
+    fn qualifies(&self, run: &Run, rest_end: u64) -> bool {
+        let plan = &self.plan;
+        let long_enough = run.blocks >= plan.rest_blocks
+            && rest_end >= run.rest_start + u64::from(plan.block / 2);
+        let replaces = !self.stroke.active
+            || run.blocks >= self.stroke.rest_blocks
+            || run.blocks >= plan.trusted_blocks;
+        long_enough && replaces
+    }
+
+    /// Block end at sample `n` (its last): fold the stroke sums, test the block, extend
+    /// or end the run.
+    pub(super) fn end_block(&mut self, n: u64) {
+        self.fold(n);
+        let plan = self.plan;
+        let b = self.block;
+        let mean = self.p.wrapping_sub(b.p_start) as f32 * plan.inv_block;
+        let shift = mean - b.first;
+        let variance = cuesight::math::max(b.ss * plan.inv_block - shift * shift, 0.0);
+        let still = !b.bad && variance <= plan.noise_limit_sq;
+        let run = &mut self.run;
+        let level_ok =
+            run.blocks == 0 || cuesight::math::abs(mean - run.level0) <= plan.level_tolerance;
+        let boundary = (n + 1, self.p, self.c);
+        let lead = (b.start, b.p_start, b.c_start, b.window_min, b.window_max);
+        if still && level_ok {
+            if run.blocks == 0 {
+                run.start(mean, boundary, lead);
+            } else {
+                run.extend(variance, boundary, &plan);
+            }
+            run.blocks += 1;
+        } else {
+            // The run ends without a motion departure: as the windowed estimator, the
+            // motion starts at the end of its last block and the rest `guard` before.
+            let fallback = *run;
+            let rest_end = b.start.saturating_sub(u64::from(plan.guard));
+            self.run.abandon();
+            if fallback.armed && self.qualifies(&fallback, rest_end) {
+                let [p, c] = b.prev_guard_mark;
+                self.anchor(n, rest_end, p, c, &fallback);
+            }
+            if still {
+                // Still, but off the run's level: a new run starts with this block.
+                self.run.start(mean, boundary, lead);
+                self.run.blocks = 1;
+            }
+        }
+        self.block = Block {
+            start: n + 1,
+            p_start: self.p,
+            c_start: self.c,
+            prev_guard_mark: b.guard_mark,
+            ..Block::new()
+        };
+    }
+}
+
+impl Run {
+    /// Start of the rest window and its prefix sums: the run's first block joins it when
+    /// the window has not moved on (runs under two buckets) and every `W`-sum inside
+    /// that block lies within the motion threshold of the final level — the windowed
+    /// estimator's backward search from the interior, at block resolution.
+    pub fn window_start(&self) -> (u64, i32, i32) {
+        let (start, p, c, low, high) = self.lead;
+        let clean = |sum: i32| {
+            let d = sum as f32 - self.w_level;
+            d * d <= self.threshold_sq
+        };
+        if !self.shifted && clean(low) && clean(high) {
+            (start, p, c)
+        } else {
+            (self.rest_start, self.p_rest, self.c_rest)
+        }
+    }
+
+    /// First block of a run, ending at `boundary` (index, prefix sums).
+    fn start(&mut self, mean: f32, boundary: (u64, i32, i32), lead: (u64, i32, i32, i32, i32)) {
+        self.level0 = mean;
+        self.lead = lead;
+        (self.rest_start, self.p_rest, self.c_rest) = boundary;
+        self.interior = 0;
+        self.shifted = false;
+        self.variance = 0.0;
+        self.armed = false;
+    }
+
+    /// A further still, level block ending at `boundary`: update the rest window (mean
+    /// variance, buckets), its level and the motion threshold; arm the motion test.
+    fn extend(&mut self, variance: f32, boundary: (u64, i32, i32), plan: &super::Plan) {
+        self.interior += 1;
+        let weight = self.interior.min(plan.bucket) as f32;
+        self.variance += (variance - self.variance) / weight;
+        if self.interior == plan.bucket {
+            self.mid = boundary;
+        } else if self.interior == 2 * plan.bucket {
+            (self.rest_start, self.p_rest, self.c_rest) = self.mid;
+            self.interior = plan.bucket;
+            self.mid = boundary;
+            self.shifted = true;
+        }
+        let (end, p_end, _) = boundary;
+        let level = p_end.wrapping_sub(self.p_rest) as f32 / (end - self.rest_start) as f32;
+        let w = plan.window as f32;
+        self.w_level = w * level;
+        self.threshold_sq = cuesight::math::max(36.0 * w * self.variance, plan.floor_sq);
+        self.armed = true;
+    }
+}
