@@ -140,9 +140,7 @@ fn atan_small(u: f32) -> f32 {
     let z = u * u;
     u * (1.0
         - z * (1.0 / 3.0
-            - z * (0.2
-                - z * (1.0 / 7.0
-                    - z * (1.0 / 9.0 - z * (1.0 / 11.0 - z * (1.0 / 13.0)))))))
+            - z * (0.2 - z * (1.0 / 7.0 - z * (1.0 / 9.0 - z * (1.0 / 11.0 - z * (1.0 / 13.0)))))))
 }
 
 /// Four-quadrant arctangent of `y / x` in `[−π, π]` (IEEE 754 `atan2`: signed zeros,
@@ -249,7 +247,8 @@ mod tests {
         // Every direction of the circle, at radii from 1e-30 to 1e30.
         for radius in [1e-30, 1e-3, 1.0, 7.3, 1e30] {
             for i in 0..=100_000 {
-                let theta = -core::f32::consts::PI + i as f32 * (2.0 * core::f32::consts::PI / 100_000.0);
+                let theta =
+                    -core::f32::consts::PI + i as f32 * (2.0 * core::f32::consts::PI / 100_000.0);
                 let (y, x) = (radius * libm::sinf(theta), radius * libm::cosf(theta));
                 let (a, b) = (atan2(y, x), libm::atan2f(y, x));
                 let error = abs(a - b);
@@ -263,15 +262,38 @@ mod tests {
         // Edges: signed zeros, infinities, tiny ratios, the reduction's breakpoint.
         let inf = f32::INFINITY;
         let edges = [
-            (0.0, 0.0), (-0.0, 0.0), (0.0, -0.0), (-0.0, -0.0), (1.0, 0.0), (-1.0, -0.0),
-            (0.0, -1.0), (-0.0, -1.0), (inf, inf), (-inf, inf), (inf, -inf), (-inf, -inf),
-            (1.0, inf), (1.0, -inf), (-1.0, -inf), (inf, 1.0), (-inf, -1.0), (1e-38, 1.0),
-            (1.0, 1e-38), (TAN_PI_12, 1.0), (1.0, TAN_PI_12), (-3.0, 3.0), (1e-45, -1.0),
+            (0.0, 0.0),
+            (-0.0, 0.0),
+            (0.0, -0.0),
+            (-0.0, -0.0),
+            (1.0, 0.0),
+            (-1.0, -0.0),
+            (0.0, -1.0),
+            (-0.0, -1.0),
+            (inf, inf),
+            (-inf, inf),
+            (inf, -inf),
+            (-inf, -inf),
+            (1.0, inf),
+            (1.0, -inf),
+            (-1.0, -inf),
+            (inf, 1.0),
+            (-inf, -1.0),
+            (1e-38, 1.0),
+            (1.0, 1e-38),
+            (TAN_PI_12, 1.0),
+            (1.0, TAN_PI_12),
+            (-3.0, 3.0),
+            (1e-45, -1.0),
         ];
         for (y, x) in edges {
             let (a, b) = (atan2(y, x), libm::atan2f(y, x));
             assert!(a == b || ulps(a, b) <= 4, "atan2({y}, {x}) = {a} vs {b}");
-            assert_eq!(a.is_sign_negative(), b.is_sign_negative(), "sign of atan2({y}, {x})");
+            assert_eq!(
+                a.is_sign_negative(),
+                b.is_sign_negative(),
+                "sign of atan2({y}, {x})"
+            );
         }
         assert!(atan2(f32::NAN, 1.0).is_nan() && atan2(1.0, f32::NAN).is_nan());
         std::println!("atan2: {worst} ulps at most where above 2e-7 rad; {worst_abs} rad at most");
