@@ -1,6 +1,6 @@
 //! Puts the board's `memory.x` (kept at the repository root, shared by every
 //! board-level crate) where cortex-m-rt's `link.x` finds it, and adds the linker
-//! scripts of cortex-m-rt and defmt to the firmware binaries.
+//! scripts of cortex-m-rt and defmt to the firmware binary and the on-target tests.
 
 use std::{env, fs, path::PathBuf};
 
@@ -26,6 +26,8 @@ fn main() {
     println!("cargo:rustc-link-search={}", out.display());
     println!("cargo:rerun-if-changed={}", memory_x.display());
     println!("cargo:rerun-if-changed=build.rs");
-    println!("cargo:rustc-link-arg-bins=-Tlink.x");
-    println!("cargo:rustc-link-arg-bins=-Tdefmt.x");
+    for kind in ["bins", "tests"] {
+        println!("cargo:rustc-link-arg-{kind}=-Tlink.x");
+        println!("cargo:rustc-link-arg-{kind}=-Tdefmt.x");
+    }
 }

@@ -12,11 +12,7 @@
 #![deny(unsafe_code)]
 #![deny(missing_docs)]
 
-mod board;
-mod exit;
-mod serve;
-mod shots;
-
+use cuesight_firmware::{board, serve, shots};
 use cuesight_link::frame::{FrameReader, MAX_FRAME};
 use cuesight_link::{Identity, Session, Upload, SCHEMA_HASH};
 use static_cell::{ConstStaticCell, StaticCell};

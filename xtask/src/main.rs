@@ -49,6 +49,10 @@ enum Command {
         /// Kill QEMU after this many seconds and fail (not with --interactive).
         #[arg(long, default_value_t = qemu::DEFAULT_TIMEOUT_SECS)]
         timeout: u64,
+        /// Boot this firmware ELF instead of building the release one (what `cargo run`
+        /// in firmware/ passes, through its runner `firmware/qemu-run`).
+        #[arg(long, value_name = "ELF")]
+        elf: Option<std::path::PathBuf>,
     },
     /// Measure every model x backend x precision (Cortex-M4 instructions under QEMU, host
     /// ns, error on the grid); write target/bench/tradeoff.{json,md,svg} (with
@@ -73,10 +77,14 @@ fn main() -> ExitCode {
             interactive,
             session,
             timeout,
+            elf,
         } => tools::ensure_for_qemu()
-            .and_then(|()| qemu::build_release())
+            .and_then(|()| match elf {
+                Some(_) => Ok(()),
+                None => qemu::build_release(),
+            })
             .and_then(|()| {
-                let elf = qemu::elf_path();
+                let elf = elf.unwrap_or_else(qemu::elf_path);
                 if interactive {
                     qemu::run_interactive(&elf)
                 } else {

@@ -65,11 +65,17 @@ const STEPS: &[Step] = &[
     },
     Step {
         title: "firmware: clippy",
-        action: || cargo_in_firmware(&["clippy", "--release", "--", "-D", "warnings"]),
+        action: || {
+            cargo_in_firmware(&["clippy", "--release", "--all-targets", "--", "-D", "warnings"])
+        },
     },
     Step {
         title: "firmware: release build",
         action: qemu::build_release,
+    },
+    Step {
+        title: "firmware: on-target unit tests in QEMU (defmt-test, release profile)",
+        action: on_target_tests,
     },
     Step {
         title: "firmware: release image size (shot request included), flash within 48 KiB and static RAM within 16 KiB",
@@ -120,6 +126,19 @@ fn rustdoc() -> Result {
 /// "z", LLVM inline threshold 50, fat LTO, one codegen unit; default features: the QEMU
 /// board and the `shot` request) whose panic handler calls a symbol defined nowhere, in
 /// its own target directory so the release ELF the QEMU steps run is left alone.
+/// `cargo test --release` in `firmware/`: the defmt-test binaries of `firmware/tests/`,
+/// each booted in QEMU by the runner (`firmware/qemu-run`), which decodes the log with
+/// the defmt-print found or installed here and exits with the tests' verdict.
+fn on_target_tests() -> Result {
+    let defmt_print = tools::defmt_print()?;
+    cmd::run(
+        cmd::cargo()
+            .args(["test", "--release"])
+            .env("DEFMT_PRINT", defmt_print)
+            .current_dir(cmd::firmware_dir()),
+    )
+}
+
 fn panic_never() -> Result {
     cargo_in_firmware(&[
         "build",

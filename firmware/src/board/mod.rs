@@ -9,7 +9,9 @@
 //!   `embedded_io::Read + Write` (blocking; `read` returns at least one byte);
 //! * `exit(success: bool) -> !` — ends the program (under QEMU: QEMU's exit code);
 //! * `peak_stack() -> (u32, u32)` — the most stack used so far and the stack's size, in
-//!   bytes (stack painting).
+//!   bytes (stack painting);
+//! * `uptime_us() -> u64` — microseconds since `init` started the board's counter (the
+//!   defmt log's timestamps; [`clock`]).
 //!
 //! Adding a board is a new module here, a feature in `Cargo.toml` and an arm below;
 //! `serve.rs` and `main.rs` do not change. The boards:
@@ -20,17 +22,18 @@
 //!
 //! Stack painting (`stack.rs`) is plain Cortex-M, shared by both.
 
+mod clock;
 mod stack;
 
 #[cfg(feature = "qemu")]
 mod qemu;
 #[cfg(feature = "qemu")]
-pub use qemu::{exit, init, peak_stack, NAME};
+pub use qemu::{exit, init, peak_stack, uptime_us, NAME};
 
 #[cfg(feature = "nrf52840")]
 mod nrf52840;
 #[cfg(feature = "nrf52840")]
-pub use nrf52840::{exit, init, peak_stack, NAME};
+pub use nrf52840::{exit, init, peak_stack, uptime_us, NAME};
 
 #[cfg(not(any(feature = "qemu", feature = "nrf52840")))]
 compile_error!("select a board with a cargo feature: `qemu` (the default) or `nrf52840`");

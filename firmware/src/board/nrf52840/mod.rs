@@ -30,6 +30,14 @@ pub use stack::peak as peak_stack;
 pub const NAME: &str = "nrf52840";
 
 /// The board's peripherals, as the firmware uses them.
+/// Core clock (MHz): the DWT cycle counter's rate.
+const CORE_MHZ: u32 = 64;
+
+/// Microseconds since [`init`] started the DWT cycle counter (0 before).
+pub fn uptime_us() -> u64 {
+    super::clock::micros(cortex_m::peripheral::DWT::cycle_count(), CORE_MHZ)
+}
+
 pub struct Board {
     /// The protocol's serial port.
     pub serial: Serial,
@@ -45,6 +53,11 @@ pub fn init() -> Board {
     };
     // The clocks stay configured for the life of the program.
     let _clocks = Clocks::new(p.CLOCK).enable_ext_hfosc();
+    // The log's timestamps: the DWT cycle counter (64 MHz core clock).
+    if let Some(mut core) = cortex_m::Peripherals::take() {
+        core.DCB.enable_trace();
+        core.DWT.enable_cycle_counter();
+    }
     let port0 = p0::Parts::new(p.P0);
     let pins = uarte::Pins {
         txd: port0.p0_06.into_push_pull_output(Level::High).degrade(),

@@ -58,17 +58,27 @@ const CTRL_RX_EN: u32 = 1 << 1;
 const CTRL_RX_INT_EN: u32 = 1 << 3;
 const INT_RX: u32 = 1 << 1;
 
-#[allow(unsafe_code)]
+/// Reads UART0's register at `offset`.
 fn read(offset: usize) -> u32 {
-    // SAFETY: an aligned 32-bit register of UART0, which only this module touches
-    // (guarded by `TAKEN`); reads have the side effects the driver expects.
-    unsafe { core::ptr::read_volatile((UART0 + offset) as *const u32) }
+    read_at(UART0 + offset)
+}
+
+/// Writes UART0's register at `offset`.
+fn write(offset: usize, value: u32) {
+    write_at(UART0 + offset, value)
 }
 
 #[allow(unsafe_code)]
-fn write(offset: usize, value: u32) {
-    // SAFETY: as in `read`.
-    unsafe { core::ptr::write_volatile((UART0 + offset) as *mut u32, value) }
+fn read_at(address: usize) -> u32 {
+    // SAFETY: an aligned 32-bit register of UART0 or TIMER0, which only this module
+    // touches (guarded by `TAKEN`); reads have the side effects the driver expects.
+    unsafe { core::ptr::read_volatile(address as *const u32) }
+}
+
+#[allow(unsafe_code)]
+fn write_at(address: usize, value: u32) {
+    // SAFETY: as in `read_at`.
+    unsafe { core::ptr::write_volatile(address as *mut u32, value) }
 }
 
 #[allow(unsafe_code)]
@@ -91,6 +101,30 @@ unsafe impl InterruptNumber for Uart0Rx {
 }
 
 /// The board's peripherals, as the firmware uses them.
+/// CMSDK APB TIMER0 (QEMU's `cmsdk-apb-timer`): a 32-bit down-counter at the
+/// peripheral clock, here free-running from `u32::MAX` (the log's timestamps).
+const TIMER0: usize = 0x4000_0000;
+const TIMER_CTRL: usize = 0x000;
+const TIMER_VALUE: usize = 0x004;
+const TIMER_RELOAD: usize = 0x008;
+const TIMER_CTRL_ENABLE: u32 = 1 << 0;
+
+/// Starts TIMER0 counting down from `u32::MAX` (a write to RELOAD loads VALUE too),
+/// no interrupt.
+fn start_uptime() {
+    write_at(TIMER0 + TIMER_RELOAD, u32::MAX);
+    write_at(TIMER0 + TIMER_CTRL, TIMER_CTRL_ENABLE);
+}
+
+/// Microseconds since [`init`] started TIMER0 (0 before).
+pub fn uptime_us() -> u64 {
+    if read_at(TIMER0 + TIMER_CTRL) & TIMER_CTRL_ENABLE == 0 {
+        return 0;
+    }
+    let elapsed = u32::MAX - read_at(TIMER0 + TIMER_VALUE);
+    super::clock::micros(elapsed, PCLK_HZ / 1_000_000)
+}
+
 pub struct Board {
     /// The protocol's serial port.
     pub serial: Uart0,
@@ -108,6 +142,7 @@ pub fn init() -> Board {
     // Interrupts only wake `wfi`; no handler ever runs.
     cortex_m::interrupt::disable();
     stack::paint();
+    start_uptime();
     write(BAUDDIV, PCLK_HZ / BAUD);
     write(CTRL, CTRL_TX_EN | CTRL_RX_EN | CTRL_RX_INT_EN);
     write(INTSTATUS, INT_RX);
