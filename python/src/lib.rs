@@ -444,6 +444,13 @@ fn _collide_many<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let model = parse_model(model).map_err(PyValueError::new_err)?;
     let auto = model == ModelName::Auto;
+    if tolerance.is_some() && !auto {
+        // One model and tolerance for the batch: refused once, not per scene.
+        return Err(PyValueError::new_err(format!(
+            "tolerance is for model 'auto', not '{}'",
+            model.name()
+        )));
+    }
     let speed = Some(speed);
     let cut_deg = Some(cut_deg);
     let scalars = [
