@@ -1,0 +1,104 @@
+//! `cargo xtask test`'s Python steps: the `cuesight` package of `python/` (PyO3 +
+//! maturin, a workspace of its own like `firmware/`, so the host workspace's fmt and
+//! clippy do not see it) linted, installed with pip into a virtual environment under
+//! the target directory, and its pytest suite run against the `cuesight` CLI, the
+//! reference of identity (`python/tests/conftest.py`).
+//!
+//! Both steps build into `<target>/python/cargo` (`CARGO_TARGET_DIR`), so nothing is
+//! written inside `python/` and a second run reuses the first's build.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use crate::cmd::{self, probe, Failure, Result};
+
+/// The package's directory.
+fn package_dir() -> PathBuf {
+    cmd::root().join("python")
+}
+
+/// The host workspace's target directory (honours `CARGO_TARGET_DIR`).
+fn host_target_dir() -> PathBuf {
+    match std::env::var_os("CARGO_TARGET_DIR") {
+        Some(dir) => cmd::root().join(dir),
+        None => cmd::root().join("target"),
+    }
+}
+
+/// Where the package's cargo builds and its virtual environment go.
+fn python_target_dir() -> PathBuf {
+    host_target_dir().join("python")
+}
+
+/// `cargo` in `python/`, building into [`python_target_dir`].
+fn cargo_in_package(args: &[&str]) -> Result {
+    cmd::run(
+        cmd::cargo()
+            .args(args)
+            .current_dir(package_dir())
+            .env("CARGO_TARGET_DIR", python_target_dir().join("cargo")),
+    )
+}
+
+/// `cargo fmt --check` and `cargo clippy -D warnings` on the package's Rust crate (its
+/// own workspace). Needs no Python beyond the interpreter pyo3's build script looks for.
+pub fn lint() -> Result {
+    // Not `--all`: that would format the path dependencies too (core, link, sensors),
+    // which "host: rustfmt" checks already.
+    cargo_in_package(&["fmt", "--", "--check"])?;
+    cargo_in_package(&["clippy", "--release", "--all-targets", "--", "-D", "warnings"])
+}
+
+/// A Python 3.9 or newer to make the virtual environment with: `python3`, else `python`.
+fn system_python() -> Result<PathBuf> {
+    let check = "import sys; assert sys.version_info >= (3, 9); print(sys.executable)";
+    ["python3", "python"]
+        .into_iter()
+        .find_map(|name| probe(Command::new(name).args(["-c", check])))
+        .map(|exe| PathBuf::from(exe.trim()))
+        .ok_or_else(|| {
+            Failure::new("no Python 3.9 or newer on PATH (python3 or python) for the Python package")
+        })
+}
+
+/// The virtual environment's interpreter, the environment made first if missing.
+fn venv_python() -> Result<PathBuf> {
+    let venv = python_target_dir().join("venv");
+    let python = venv.join("bin").join("python");
+    if !python.is_file() {
+        cmd::run(Command::new(system_python()?).args(["-m", "venv"]).arg(&venv))?;
+    }
+    Ok(python)
+}
+
+/// The `cuesight` CLI the tests compare with, built if it is not (the debug profile, as
+/// "host: tests" leaves it).
+fn cli() -> Result<PathBuf> {
+    cmd::run(cmd::cargo().args(["build", "-p", "cuesight-host", "--bin", "cuesight"]))?;
+    Ok(host_target_dir().join("debug").join("cuesight"))
+}
+
+/// `pip install ./python pytest numpy` into the virtual environment (pip fetches
+/// maturin, the build backend, and builds the extension in release), then pytest on
+/// `python/tests` with `CUESIGHT_CLI` set, so no test is skipped for want of the CLI.
+pub fn tests() -> Result {
+    let python = venv_python()?;
+    let pip = |args: &[&str]| {
+        cmd::run(
+            Command::new(&python)
+                .args(["-m", "pip", "--disable-pip-version-check", "install", "-q"])
+                .args(args)
+                .env("CARGO_TARGET_DIR", python_target_dir().join("cargo")),
+        )
+    };
+    pip(&["./python", "pytest", "numpy"])?;
+    let cli = cli()?;
+    // From the repository root: `import cuesight` is then the installed package, not
+    // python/cuesight/ (the sources, without the compiled extension).
+    cmd::run(
+        Command::new(&python)
+            .args(["-m", "pytest", "-q", "-p", "no:cacheprovider"])
+            .arg(Path::new("python").join("tests"))
+            .env("CUESIGHT_CLI", &cli),
+    )
+}
