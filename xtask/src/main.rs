@@ -6,6 +6,8 @@
 //! * `cargo xtask test` — every check: host fmt/clippy/tests, core for the target,
 //!   firmware fmt/clippy/build and size, the demo session and the end-to-end test in
 //!   QEMU.
+//! * `cargo xtask docs [--check]` — regenerate the figures of README.md and docs/ that
+//!   commands produce (generated blocks); `--check` fails on any that is stale.
 //! * `cargo xtask fuzz [--seconds N] [TARGET...]` — the cargo-fuzz targets of `fuzz/`,
 //!   each for a bounded time (60 s in `cargo xtask test`).
 //!
@@ -13,6 +15,7 @@
 
 mod bench;
 mod cmd;
+mod docs;
 mod fuzz;
 mod qemu;
 mod size;
@@ -62,6 +65,9 @@ enum Command {
     /// committed seeds; fails on any crash (installs cargo-fuzz and a C++ compiler if
     /// missing; stable toolchain through RUSTC_BOOTSTRAP=1).
     Fuzz(fuzz::Args),
+    /// Regenerate the generated blocks of README.md and docs/*.md (figures that a
+    /// command produces); with --check, change nothing and fail on any stale block.
+    Docs(docs::Args),
     /// Run every check, stopping at the first failure.
     Test {
         /// Run the remaining steps after a failure instead of stopping.
@@ -94,6 +100,7 @@ fn main() -> ExitCode {
             }),
         Command::Test { keep_going } => test::run_all(keep_going),
         Command::Bench(args) => bench::run(&args),
+        Command::Docs(args) => docs::run(&args),
         Command::Fuzz(args) => fuzz::run(&args),
     };
     match result {

@@ -94,6 +94,10 @@ const STEPS: &[Step] = &[
         action: demo_session,
     },
     Step {
+        title: "docs: every generated block of README.md and docs/ is current (cargo xtask docs --check)",
+        action: || crate::docs::run(&crate::docs::Args::check()),
+    },
+    Step {
         title: "firmware: end-to-end test in QEMU",
         action: end_to_end,
     },
@@ -155,29 +159,40 @@ fn panic_never() -> Result {
 /// static RAM held to the budgets. `--no-default-features` leaves the `shot` request
 /// out too (the board's image with it is over the flash budget), so this also builds
 /// and lints the firmware without `shot`.
+/// The nrf52840 board's arguments: release, its feature alone (no `shot`), its own
+/// target directory.
+const NRF52840: [&str; 6] = [
+    "--release",
+    "--no-default-features",
+    "--features",
+    "nrf52840",
+    "--target-dir",
+    "target/nrf52840",
+];
+
+/// The nrf52840 board's release ELF.
+pub fn nrf52840_elf() -> std::path::PathBuf {
+    cmd::firmware_dir()
+        .join("target/nrf52840")
+        .join(tools::TARGET)
+        .join("release")
+        .join("cuesight-firmware")
+}
+
+/// Builds the nrf52840 board's release image.
+pub fn build_nrf52840() -> Result {
+    let mut build = vec!["build"];
+    build.extend(NRF52840);
+    cargo_in_firmware(&build)
+}
+
 fn nrf52840() -> Result {
-    let board = [
-        "--release",
-        "--no-default-features",
-        "--features",
-        "nrf52840",
-        "--target-dir",
-        "target/nrf52840",
-    ];
     let mut clippy = vec!["clippy"];
-    clippy.extend(board);
+    clippy.extend(NRF52840);
     clippy.extend(["--", "-D", "warnings"]);
     cargo_in_firmware(&clippy)?;
-    let mut build = vec!["build"];
-    build.extend(board);
-    cargo_in_firmware(&build)?;
-    size::check_budgets(
-        &cmd::firmware_dir()
-            .join("target/nrf52840")
-            .join(tools::TARGET)
-            .join("release")
-            .join("cuesight-firmware"),
-    )
+    build_nrf52840()?;
+    size::check_budgets(&nrf52840_elf())
 }
 
 /// Issue 6's stack budget: the painted peak the firmware logs at `shutdown`.

@@ -1,0 +1,399 @@
+//! `cargo xtask docs [--check]`: the figures of `README.md` and `docs/*.md` that come
+//! from a command live in generated blocks, which this regenerates; `--check` (a CI
+//! step) changes nothing and fails on any block that is not what its command gives
+//! now, showing the first difference.
+//!
+//! Blocks are HTML comments, invisible in the rendered page:
+//!
+//! ```text
+//! <!-- docs:console CMD -->
+//! ...
+//! <!-- /docs -->
+//! ```
+//!
+//! is CMD's output (run from the repository root, without a shell: CMD is split at
+//! spaces; stdout, then stderr) as a ```` ```console ```` block whose first line is
+//! `$ CMD`, so the page names the command that produced it. And
+//!
+//! ```text
+//! <!-- docs:value NAME -->...<!-- /docs -->
+//! ```
+//!
+//! (inline, or on lines of its own) is a figure computed here: the values are listed in
+//! [`value`] (firmware sizes from the release ELF, the link's limits from
+//! `cuesight-link`, differences between two commands' JSON answers).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use crate::cmd::{self, Failure, Result};
+use crate::{qemu, size};
+
+/// `cargo xtask docs` arguments.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Change nothing; fail if any generated block differs from what it would be now.
+    #[arg(long)]
+    check: bool,
+}
+
+impl Args {
+    /// `--check`.
+    pub fn check() -> Self {
+        Self { check: true }
+    }
+}
+
+const OPEN: &str = "<!-- docs:";
+const CLOSE: &str = "<!-- /docs -->";
+
+/// One generated block of a file: `spec` is what follows `docs:` in its marker,
+/// `content` the bytes between the markers.
+#[derive(Debug)]
+struct Block {
+    spec: String,
+    content: std::ops::Range<usize>,
+}
+
+pub fn run(args: &Args) -> Result {
+    let mut stale = Vec::new();
+    let mut blocks_seen = 0;
+    for file in files()? {
+        let text = std::fs::read_to_string(&file)
+            .map_err(|e| Failure::new(format!("reading {}: {e}", file.display())))?;
+        let shown = file
+            .strip_prefix(cmd::root())
+            .unwrap_or(&file)
+            .display()
+            .to_string();
+        let blocks = parse(&text).map_err(|e| Failure::new(format!("{shown}: {e}")))?;
+        let mut updated = String::with_capacity(text.len());
+        let mut at = 0;
+        for block in &blocks {
+            blocks_seen += 1;
+            let now = render(&block.spec, is_inline(&text, block))?;
+            let was = &text[block.content.clone()];
+            if now != was {
+                let line = text[..block.content.start].lines().count();
+                stale.push(format!(
+                    "{shown}:{line}: `{}` is stale\n{}",
+                    block.spec,
+                    first_difference(was, &now)
+                ));
+            }
+            updated.push_str(&text[at..block.content.start]);
+            updated.push_str(&now);
+            at = block.content.end;
+        }
+        updated.push_str(&text[at..]);
+        if !args.check && updated != text {
+            std::fs::write(&file, updated)
+                .map_err(|e| Failure::new(format!("writing {}: {e}", file.display())))?;
+            println!("xtask docs: updated {shown}");
+        }
+    }
+    if args.check && !stale.is_empty() {
+        return Err(Failure::new(format!(
+            "{} of {blocks_seen} generated blocks are stale (run `cargo xtask docs`):\n{}",
+            stale.len(),
+            stale.join("\n")
+        )));
+    }
+    println!(
+        "xtask docs: {blocks_seen} generated blocks {}",
+        if args.check { "current" } else { "regenerated" }
+    );
+    Ok(())
+}
+
+/// `README.md` and every `docs/*.md`, sorted.
+fn files() -> Result<Vec<PathBuf>> {
+    let docs = cmd::root().join("docs");
+    let listing = std::fs::read_dir(&docs)
+        .map_err(|e| Failure::new(format!("reading {}: {e}", docs.display())))?;
+    let mut files: Vec<PathBuf> = listing
+        .filter_map(|entry| entry.ok().map(|e| e.path()))
+        .filter(|path| path.extension().is_some_and(|ext| ext == "md"))
+        .collect();
+    files.sort();
+    files.insert(0, cmd::root().join("README.md"));
+    Ok(files)
+}
+
+/// The generated blocks of `text`, in order; an unclosed or nested block is an error.
+fn parse(text: &str) -> std::result::Result<Vec<Block>, String> {
+    let mut blocks = Vec::new();
+    let mut from = 0;
+    while let Some(found) = text[from..].find(OPEN) {
+        let open = from + found;
+        let line = text[..open].lines().count().max(1);
+        let marker_end = text[open..]
+            .find("-->")
+            .map(|end| open + end + 3)
+            .ok_or(format!("line {line}: a `{OPEN}` marker without its `-->`"))?;
+        let spec = text[open + OPEN.len()..marker_end - 3].trim().to_string();
+        let close = text[marker_end..]
+            .find(CLOSE)
+            .map(|end| marker_end + end)
+            .ok_or(format!("line {line}: `{spec}` has no `{CLOSE}`"))?;
+        if text[marker_end..close].contains(OPEN) {
+            return Err(format!("line {line}: `{spec}` holds another block"));
+        }
+        blocks.push(Block {
+            spec,
+            content: marker_end..close,
+        });
+        from = close + CLOSE.len();
+    }
+    Ok(blocks)
+}
+
+/// A block whose markers share a line renders without line breaks around it.
+fn is_inline(text: &str, block: &Block) -> bool {
+    !text[block.content.clone()].contains('\n')
+}
+
+fn render(spec: &str, inline: bool) -> Result<String> {
+    let (kind, rest) = spec.split_once(' ').unwrap_or((spec, ""));
+    let body = match kind {
+        "console" => console(rest.trim())?,
+        "value" => value(rest.trim())?,
+        _ => {
+            return Err(Failure::new(format!(
+                "unknown generated block `docs:{kind}`"
+            )))
+        }
+    };
+    Ok(if inline {
+        body.trim_end().to_string()
+    } else {
+        format!("\n{}\n", body.trim_end())
+    })
+}
+
+/// Runs `line` (split at spaces) from the repository root; its stdout and stderr.
+fn output_of(line: &str) -> Result<String> {
+    let mut words = line.split_whitespace();
+    let program = words
+        .next()
+        .ok_or(Failure::new("an empty `docs:console` command"))?;
+    let program = if program == "cargo" {
+        cmd::cargo()
+    } else {
+        Command::new(program)
+    };
+    let mut command = program;
+    command
+        .args(words)
+        .current_dir(cmd::root())
+        .env("CARGO_TERM_COLOR", "never");
+    let output = command
+        .output()
+        .map_err(|e| Failure::new(format!("running `{line}`: {e}")))?;
+    let mut text = String::from_utf8_lossy(&output.stdout).into_owned();
+    text.push_str(&String::from_utf8_lossy(&output.stderr));
+    Ok(text)
+}
+
+fn console(line: &str) -> Result<String> {
+    Ok(format!("```console\n$ {line}\n{}```", output_of(line)?))
+}
+
+/// The JSON answer of a `cuesight ... --json` command.
+fn json_of(line: &str) -> Result<serde_json::Value> {
+    let text = output_of(line)?;
+    serde_json::from_str(text.trim()).map_err(|e| {
+        Failure::new(format!(
+            "`{line}` did not print one JSON value ({e}): {text}"
+        ))
+    })
+}
+
+/// `1,234,567`.
+fn thousands(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// The release image's sizes (built if missing).
+fn firmware_sizes() -> Result<size::Sizes> {
+    let elf = qemu::elf_path();
+    if !elf.exists() {
+        qemu::build_release()?;
+    }
+    sizes_of(&elf)
+}
+
+/// The nrf52840 board's release image (without `shot`), as the CI step builds it
+/// (built if missing).
+fn nrf52840_sizes() -> Result<size::Sizes> {
+    let elf = crate::test::nrf52840_elf();
+    if !elf.exists() {
+        crate::test::build_nrf52840()?;
+    }
+    sizes_of(&elf)
+}
+
+fn sizes_of(elf: &Path) -> Result<size::Sizes> {
+    let bytes =
+        std::fs::read(elf).map_err(|e| Failure::new(format!("reading {}: {e}", elf.display())))?;
+    size::sizes(&bytes).ok_or(Failure::new(format!(
+        "{}: not an ELF32 image",
+        elf.display()
+    )))
+}
+
+/// The CLI, as README.md runs it.
+const CLI: &str = "cargo run -q -p cuesight-host --bin cuesight --";
+
+/// The number at `path` of a JSON value (element `i` if it is an array).
+fn number(value: &serde_json::Value, path: &[&str], i: usize) -> Result<f64> {
+    let mut at = value;
+    for key in path {
+        at = &at[*key];
+    }
+    at.get(i)
+        .unwrap_or(at)
+        .as_f64()
+        .ok_or(Failure::new(format!("no number at {path:?}[{i}]")))
+}
+
+/// A number of the worked example's `--json` answer (KimGrip).
+fn worked_example(path: &[&str], i: usize) -> Result<f64> {
+    number(&json_of(&format!("{CLI} {WORKED_EXAMPLE}"))?, path, i)
+}
+
+/// The peak stack of the last demo session (`cargo xtask run`'s log, "peak stack N of M
+/// bytes"); plays the demo first if there is no log newer than the release ELF.
+fn demo_peak_stack() -> Result<u64> {
+    let log = qemu::log_file();
+    let modified = |path: &Path| std::fs::metadata(path).and_then(|m| m.modified()).ok();
+    let fresh = match (modified(&log), modified(&qemu::elf_path())) {
+        (Some(log), Some(elf)) => log >= elf,
+        _ => false,
+    };
+    if !fresh {
+        crate::tools::ensure_for_qemu()?;
+        qemu::build_release()?;
+        let timeout = std::time::Duration::from_secs(qemu::DEFAULT_TIMEOUT_SECS);
+        qemu::run_session(&qemu::elf_path(), &qemu::demo_session(), timeout)?;
+    }
+    let text = std::fs::read_to_string(&log)
+        .map_err(|e| Failure::new(format!("reading {}: {e}", log.display())))?;
+    text.lines()
+        .find_map(|line| line.split("peak stack ").nth(1))
+        .and_then(|rest| rest.split_whitespace().next())
+        .and_then(|n| n.parse().ok())
+        .ok_or(Failure::new(format!(
+            "no 'peak stack N' line in {}",
+            log.display()
+        )))
+}
+
+/// The worked example of README.md, as `cuesight collide` takes it.
+const WORKED_EXAMPLE: &str = "collide --speed 2 --cut 30 --spin 0,40,0 --mu 0.06 --json";
+
+/// The figures a `docs:value` block can hold.
+fn value(name: &str) -> Result<String> {
+    Ok(match name {
+        "firmware-flash" => thousands(firmware_sizes().map(|s| s.text + s.data)?),
+        "firmware-static-ram" => thousands(firmware_sizes().map(|s| s.data + s.bss)?),
+        "firmware-flash-over-target" => {
+            let flash = firmware_sizes().map(|s| s.text + s.data)?;
+            thousands(flash.saturating_sub(size::FLASH_TARGET))
+        }
+        "nrf52840-flash" => thousands(nrf52840_sizes().map(|s| s.text + s.data)?),
+        "nrf52840-static-ram" => thousands(nrf52840_sizes().map(|s| s.data + s.bss)?),
+        "max-frame" => thousands(cuesight_link::frame::MAX_FRAME as u64),
+        "max-samples" => cuesight_link::MAX_SAMPLES.to_string(),
+        "stroke-capacity" => thousands(cuesight_link::STROKE_CAPACITY as u64),
+        "schema-hash" => format!("{:#010x}", cuesight_link::SCHEMA_HASH),
+        "worked-example-throw" => format!("{:.2}", worked_example(&["throw_deg"], 0)?),
+        "worked-example-deflection" => {
+            format!("{:.1}", worked_example(&["cue_deflection_deg"], 0)?)
+        }
+        "worked-example-hop" => format!("{:.3}", worked_example(&["cue", "v"], 2)?),
+        "worked-example-vs-reference" => {
+            let model = json_of(&format!("{CLI} {WORKED_EXAMPLE}"))?;
+            let reference = json_of(&format!("{CLI} {WORKED_EXAMPLE} --model reference"))?;
+            let mut velocity = 0.0f64;
+            for ball in ["cue", "object"] {
+                for i in 0..3 {
+                    let d = number(&model, &[ball, "v"], i)? - number(&reference, &[ball, "v"], i)?;
+                    velocity = velocity.max(d.abs());
+                }
+            }
+            let throw =
+                (number(&model, &["throw_deg"], 0)? - number(&reference, &["throw_deg"], 0)?).abs();
+            format!("at most {velocity:.1e} m/s in velocity and {throw:.3}° in throw")
+        }
+        "demo-peak-stack" => thousands(demo_peak_stack()?),
+        _ => return Err(Failure::new(format!("unknown `docs:value {name}`"))),
+    })
+}
+
+/// The first line where `was` and `now` differ, both versions.
+fn first_difference(was: &str, now: &str) -> String {
+    let (was_lines, now_lines): (Vec<&str>, Vec<&str>) =
+        (was.lines().collect(), now.lines().collect());
+    let n = was_lines.len().max(now_lines.len());
+    for i in 0..n {
+        let (a, b) = (was_lines.get(i), now_lines.get(i));
+        if a != b {
+            return format!(
+                "    doc:  {}\n    now:  {}",
+                a.unwrap_or(&"(nothing)"),
+                b.unwrap_or(&"(nothing)")
+            );
+        }
+    }
+    "    (line breaks differ)".into()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_inline_and_multiline_blocks() {
+        let text = "a <!-- docs:value max-frame -->9<!-- /docs --> b\n\
+                    <!-- docs:console echo hi -->\nold\n<!-- /docs -->\n";
+        let blocks = parse(text).unwrap();
+        assert_eq!(blocks.len(), 2);
+        assert_eq!(blocks[0].spec, "value max-frame");
+        assert_eq!(&text[blocks[0].content.clone()], "9");
+        assert!(is_inline(text, &blocks[0]));
+        assert_eq!(blocks[1].spec, "console echo hi");
+        assert_eq!(&text[blocks[1].content.clone()], "\nold\n");
+        assert!(!is_inline(text, &blocks[1]));
+    }
+
+    #[test]
+    fn refuses_unclosed_and_nested_blocks() {
+        assert!(parse("<!-- docs:value x -->")
+            .unwrap_err()
+            .contains("no `<!-- /docs -->`"));
+        let nested = "<!-- docs:value a --><!-- docs:value b --><!-- /docs --><!-- /docs -->";
+        assert!(parse(nested).unwrap_err().contains("holds another block"));
+    }
+
+    #[test]
+    fn console_block_names_its_command() {
+        let rendered = render("console echo 42", false).unwrap();
+        assert_eq!(rendered, "\n```console\n$ echo 42\n42\n```\n");
+    }
+
+    #[test]
+    fn groups_thousands() {
+        assert_eq!(thousands(7), "7");
+        assert_eq!(thousands(46_136), "46,136");
+        assert_eq!(thousands(1_234_567), "1,234,567");
+    }
+}
