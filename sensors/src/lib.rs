@@ -12,7 +12,7 @@
 //!   ([`cuesight::strike`], TP A.30) for ball speed and spin.
 //! * [`trigger`]: [`ImpactTrigger`] tells the capture loop when the ring holds the stroke.
 //! * [`streaming`]: [`StreamingEstimator`], the same estimate one sample at a time in
-//!   1.4 KiB, with no window: a stroke (or a typed fault) on the impact sample.
+//!   1,496 bytes, with no window: a stroke (or a typed fault) on the impact sample.
 //!
 //! Measured accuracy and the models behind it: `docs/sensors.md`.
 //!

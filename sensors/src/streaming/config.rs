@@ -31,8 +31,10 @@ pub struct StreamConfig {
     /// positive. Default [`GYRO_RADPS_PER_LSB`] (±2000 dps).
     pub pitch_scale: f32,
     /// A rest at least this long (s) replaces an earlier, longer one as the start of the
-    /// integration. Default 0.3 s (see `docs/sensors.md` §11: a smooth move's
-    /// acceleration plateau passes the rest tests for at most ~0.2 s).
+    /// integration, if the cue's integrated speed at its end is near zero. Default 1 s:
+    /// the gentle end of a slow backswing (1.5 s) passes the rest tests for up to
+    /// 0.55 s at near-zero speed (`docs/sensors.md` §11); shorter runs are compared by
+    /// length, as the windowed estimator does.
     pub trusted_rest: f32,
     /// Longest accepted stroke, from the end of the rest to the impact (s). An
     /// integration running longer is dropped. Default 10 s; at most 60 s.
@@ -52,7 +54,7 @@ impl StreamConfig {
             stroke: StrokeConfig::new(sample_rate_hz),
             accel_scale: ACCEL_MPS2_PER_LSB,
             pitch_scale: GYRO_RADPS_PER_LSB,
-            trusted_rest: 0.3,
+            trusted_rest: 1.0,
             max_stroke: 10.0,
             double_hit_window: 0.1,
             min_speed: 0.05,
@@ -203,7 +205,8 @@ impl Plan {
             return Err(StreamConfigError::Stroke(ConfigField::MinRest));
         }
         // NaN-safe: only a full scale strictly above the threshold is accepted.
-        if !(s.full_scale > s.impact_threshold) {
+        let above = s.full_scale > s.impact_threshold;
+        if !above {
             return Err(StreamConfigError::Stroke(ConfigField::FullScale));
         }
         if !(s.cue_elevation >= -1.2 && s.cue_elevation <= 1.2) {

@@ -6,6 +6,12 @@ use crate::lsm6dsox::STANDARD_GRAVITY;
 
 use super::rest::Run;
 
+/// Largest speed (m/s) at which a later, shorter run may replace the integration's
+/// origin: a pause at the back integrates to ~0 (0.005 m/s of noise and bias error at
+/// 8 mg), a smooth move's acceleration plateau to its speed there (0.83 d/T for a
+/// minimum-jerk move of `d` in `T`: 0.08 m/s for 15 cm in 1.5 s).
+pub(super) const REST_SPEED: f32 = 0.02;
+
 /// The stroke being integrated (counts unless stated).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Stroke {
@@ -107,6 +113,26 @@ impl StreamingEstimator {
             let (sin, cos) = cuesight::math::sin_cos(self.plan.elevation);
             self.gravity = Some((STANDARD_GRAVITY * cos, STANDARD_GRAVITY * sin));
         }
+    }
+
+    /// The integrated cue speed at `index` (acceleration prefix sum `p` there) is below
+    /// [`REST_SPEED`]. The tilt correction is taken through the current sample (the
+    /// motion test fires `W + guard` samples after `index`; the cue has barely moved).
+    pub(super) fn at_rest(&self, index: u64, p: i32) -> bool {
+        let s = &self.stroke;
+        if index < s.live_from {
+            return false;
+        }
+        let count = index - s.rest_end;
+        let total =
+            s.sum + i64::from(p.wrapping_sub(s.fold)) - count as i64 * i64::from(s.bias_round);
+        let counts = total as f32 - count as f32 * s.bias_fraction;
+        let (g_cos, g_sin) = self.gravity.unwrap_or((STANDARD_GRAVITY, 0.0));
+        let angle = self.plan.pitch_scale * self.plan.dt;
+        let (lin, quad) = (s.lin + s.lin_block, s.quad + s.quad_block);
+        let correction = self.plan.dt * angle * (g_cos * lin - 0.5 * g_sin * angle * quad);
+        let speed = counts * self.plan.scale * self.plan.dt + correction;
+        cuesight::math::abs(speed) < REST_SPEED
     }
 
     /// Per-sample tilt sums (step 5, gyro-aided part): `A = T + q/2` is the elevation

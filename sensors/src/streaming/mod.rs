@@ -2,7 +2,7 @@
 //!
 //! The windowed estimator ([`crate::stroke`]) needs the whole stroke in a buffer (3.6 s,
 //! 48 kB at 6.66 kHz). This one keeps block statistics, prefix sums and a 128-sample
-//! ring of them ([`StreamingEstimator`] is 1.4 KiB), and reports each stroke on the
+//! ring of them ([`StreamingEstimator`] is 1,496 bytes), and reports each stroke on the
 //! sample that crosses the impact threshold. The steps are the windowed estimator's
 //! (`stroke.rs` module docs, `docs/sensors.md` §4), rearranged so that each is decided
 //! when its last sample arrives:
@@ -17,11 +17,12 @@
 //!    (10 ms) before that window. A run that fails its block tests without a departure
 //!    ends at its last block, `guard` earlier (the windowed estimator's fallback).
 //! 3. **Which rest**: a run of at least `min_rest` whose motion starts becomes the
-//!    integration's origin if there is none, or if it is at least as long as the
-//!    current one (the windowed estimator's "longest, ties to the later"), or at least
-//!    `trusted_rest` long (a pause at the back), or the current one is older than
-//!    `max_stroke`. Runs shorter than the current origin and than `trusted_rest` are
-//!    the acceleration plateaus of a smooth move, not rests, and are ignored.
+//!    integration's origin if there is none, if it is at least as long as the current
+//!    one (the windowed estimator's "longest, ties to the later"), if the current one
+//!    is older than `max_stroke`, or if it is `trusted_rest` (1 s) long and the cue's
+//!    speed at its end, integrated from the current origin, is under 0.02 m/s. Shorter
+//!    runs are the acceleration plateaus and gentle ends of smooth moves (the last
+//!    0.55 s of a 1.5 s backswing pass the rest tests at near-zero speed), not rests.
 //! 4. **Bias** = the mean of the rest window (offset + gravity along the cue); the
 //!    gyro's pitch-rate bias likewise.
 //! 5. **Integration** ([`integral`]) from the rest end: `V = Σ (a_i − bias) Δt`, exact

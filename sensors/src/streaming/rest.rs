@@ -145,21 +145,24 @@ impl StreamingEstimator {
         // The block holding the departure is not a rest block: a new run starts after it.
         self.block.bad = true;
         let rest_end = (n + 1).saturating_sub(u64::from(self.plan.delay));
-        if self.qualifies(&run, rest_end) {
-            let [p, c] = self.ring[rest_end as usize & super::MASK];
+        let [p, c] = self.ring[rest_end as usize & super::MASK];
+        if self.qualifies(&run, rest_end, p) {
             self.anchor(n, rest_end, p, c, &run);
         }
     }
 
-    /// Step 3: `run`, ending at `rest_end`, is a rest (`min_rest` of blocks, half a
-    /// block of rest window) that replaces the integration's current origin.
-    fn qualifies(&self, run: &Run, rest_end: u64) -> bool {
+    /// Step 3: `run`, ending at `rest_end` (acceleration prefix sum `p` there), is a
+    /// rest (`min_rest` of blocks, half a block of rest window) that replaces the
+    /// integration's current origin: none, a shorter one, or one it is `trusted_rest`
+    /// long and the cue's speed at its end, integrated from that origin, is below
+    /// [`super::integral::REST_SPEED`] (a smooth move's acceleration plateau is not).
+    fn qualifies(&self, run: &Run, rest_end: u64, p: i32) -> bool {
         let plan = &self.plan;
         let long_enough = run.blocks >= plan.rest_blocks
             && rest_end >= run.rest_start + u64::from(plan.block / 2);
         let replaces = !self.stroke.active
             || run.blocks >= self.stroke.rest_blocks
-            || run.blocks >= plan.trusted_blocks;
+            || (run.blocks >= plan.trusted_blocks && self.at_rest(rest_end, p));
         long_enough && replaces
     }
 
@@ -191,8 +194,8 @@ impl StreamingEstimator {
             let fallback = *run;
             let rest_end = b.start.saturating_sub(u64::from(plan.guard));
             self.run.abandon();
-            if fallback.armed && self.qualifies(&fallback, rest_end) {
-                let [p, c] = b.prev_guard_mark;
+            let [p, c] = b.prev_guard_mark;
+            if fallback.armed && self.qualifies(&fallback, rest_end, p) {
                 self.anchor(n, rest_end, p, c, &fallback);
             }
             if still {

@@ -299,8 +299,8 @@ pub struct Truth {
 /// A continuous stream: the strokes' samples one after the other, each from its own
 /// start (settling move or address) to `pause` seconds after its follow-through ends.
 /// The accelerometer bias and gyro bias of the first stroke are used for all (one
-/// sensor); each stroke keeps its own cue elevation, so the level steps between strokes
-/// (the cue is put down and picked up).
+/// sensor), and each stroke starts at the elevation the previous one ended with (one
+/// cue, no step the gyro would not see).
 pub fn stream(
     strokes: &[(Stroke, f64)],
     fs: f64,
@@ -311,12 +311,15 @@ pub fn stream(
     let (bias, gyro_bias) = strokes
         .first()
         .map_or((0.0, 0.0), |(s, _)| (s.bias, s.gyro_bias));
+    let mut elevation = strokes.first().map_or(0.0, |(s, _)| s.elevation);
     for (stroke, pause) in strokes {
         let stroke = Stroke {
             bias,
             gyro_bias,
+            elevation,
             ..stroke.clone()
         };
+        elevation = stroke.tilt(stroke.end_of_follow_through());
         let offset = accel.len();
         let end = stroke.end_of_follow_through() + pause;
         let (a, p) = stroke.samples_to(end, fs, noise_rms, rng);
