@@ -7,6 +7,7 @@ pub mod device;
 pub mod domain;
 pub mod firmware;
 pub mod grid;
+pub mod invariants;
 pub mod reference;
 pub mod report;
 pub mod shot_cli;
