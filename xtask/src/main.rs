@@ -17,6 +17,7 @@ mod bench;
 mod cmd;
 mod docs;
 mod fuzz;
+mod python;
 mod qemu;
 mod size;
 mod test;

@@ -47,6 +47,14 @@ const STEPS: &[Step] = &[
         action: rustdoc,
     },
     Step {
+        title: "python: rustfmt and clippy of the Python package (python/, its own workspace)",
+        action: crate::python::lint,
+    },
+    Step {
+        title: "python: pip install ./python into target/python/venv, pytest against the cuesight CLI",
+        action: crate::python::tests,
+    },
+    Step {
         title: "core: build for thumbv7em-none-eabihf",
         action: || {
             cargo_at_root(&[
