@@ -13,6 +13,9 @@
 //! * [`trigger`]: [`ImpactTrigger`] tells the capture loop when the ring holds the stroke.
 //! * [`streaming`]: [`StreamingEstimator`], the same estimate one sample at a time in
 //!   1,496 bytes, with no window: a stroke (or a typed fault) on the impact sample.
+//! * [`emulated`]: an LSM6DSOX register model behind the embedded-hal `I2c` trait, on
+//!   which the unchanged driver runs (QEMU, host tests); [`trace`]: the CSV trace format
+//!   that feeds it, and a byte-at-a-time parser.
 //!
 //! Measured accuracy and the models behind it: `docs/sensors.md`.
 //!
@@ -47,11 +50,13 @@
 #![deny(unsafe_code)]
 #![deny(missing_docs)]
 
+pub mod emulated;
 pub mod glitch;
 pub mod lsm6dsox;
 pub mod ring;
 pub mod streaming;
 pub mod stroke;
+pub mod trace;
 pub mod trigger;
 
 pub use glitch::{find_glitch, Glitch, GlitchKind};
