@@ -134,21 +134,34 @@ pub fn options(flags: &Flags) -> Result<FitOptions, CalibrateError> {
 
 /// Read, fit (and cross-validate) and render the output.
 pub fn run(flags: &Flags) -> Result<String, CalibrateError> {
-    let options = options(flags)?;
+    // The flags are checked before the file is read.
+    options(flags)?;
     let points = read_file(&flags.throw).map_err(|e| invalid(e.to_string()))?;
+    run_points(&points, flags, &flags.throw.display().to_string())
+}
+
+/// [`run`] on points already read (`flags.throw` is not read): fit (and
+/// cross-validate) and render the output; `source` names the points in messages and
+/// in the report (`run` gives the file's path).
+pub fn run_points(
+    points: &[Measurement],
+    flags: &Flags,
+    source: &str,
+) -> Result<String, CalibrateError> {
+    let options = options(flags)?;
     if points.is_empty() {
-        return Err(invalid(format!("{}: no points", flags.throw.display())));
+        return Err(invalid(format!("{source}: no points")));
     }
-    let fitted = fit(&points, &options).map_err(|e| invalid(e.to_string()))?;
+    let fitted = fit(points, &options).map_err(|e| invalid(e.to_string()))?;
     let folds = if flags.cross_validate {
-        Some(cross_validate(&points, &options).map_err(|e| invalid(e.to_string()))?)
+        Some(cross_validate(points, &options).map_err(|e| invalid(e.to_string()))?)
     } else {
         None
     };
     Ok(if flags.json {
         report::json(&fitted, folds.as_deref()).to_string()
     } else {
-        let mut text = report::text(&fitted, &flags.throw.display().to_string());
+        let mut text = report::text(&fitted, source);
         if let Some(folds) = &folds {
             text.push('\n');
             text.push_str(&report::cross_validation_text(folds));
