@@ -575,7 +575,7 @@ impl Map {
         const PANEL: f64 = CELL * GRID as f64;
         const GAP: f64 = 40.0;
         const LEFT: f64 = 100.0;
-        const TOP: f64 = 50.0;
+        const TOP: f64 = 70.0;
         let width = LEFT + 3.0 * (PANEL + GAP);
         let height = TOP + MODELS.len() as f64 * (PANEL + GAP) + 40.0;
         let mut s = String::new();
@@ -585,7 +585,7 @@ impl Map {
         );
         let _ = writeln!(
             s,
-            r#"<rect width="100%" height="100%" fill="white"/><text x="{LEFT}" y="20" font-size="14">Share of scenes within 0.05 % / 0.5 % / 5 % of U, bins of μ (x, 0–1) × μ_s (y, 0–1, up); red 0 %, yellow 50 %, green 100 %; {} scenes</text>"#,
+            r#"<rect width="100%" height="100%" fill="white"/><text x="8" y="20" font-size="14">Share of scenes within 0.05 % / 0.5 % / 5 % of U ({} scenes)</text><text x="8" y="38">bins of μ (x, 0–1) × μ_s (y, 0–1, up): red 0 %, yellow 50 %, green 100 %</text>"#,
             self.all.count
         );
         for (t, label) in ["within 0.05 % of U", "within 0.5 % of U", "within 5 % of U"]

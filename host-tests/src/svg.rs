@@ -1,6 +1,8 @@
-//! SVG drawing of a played shot (`cuesight shot --svg FILE`): the table (rails, cloth,
-//! pocket mouths and their target segments), every ball, the ghost ball, the cue ball's
-//! path before and after the contact, the object ball's path, and the chosen pocket.
+//! SVG drawing of a played shot (`cuesight shot --svg FILE`): the table (rails with
+//! their diamonds, cloth, pockets to scale with their target segments; [`table`]), every
+//! ball with its number, the ghost ball, the cue ball's path before and after the
+//! contact, the object ball's path, the chosen pocket, a key with a scale bar and the
+//! tip offset ([`legend`]), and the guidance as a caption.
 //!
 //! Written as text (no drawing crate: a few dozen elements do not need one). The table
 //! is drawn with `x` to the right and `y` up, 1000 px along its length. Post-impact
@@ -12,16 +14,18 @@
 
 use std::fmt::Write;
 
-use cuesight::table::Table;
 use cuesight::travel::Motion;
 use cuesight::Vec3;
 
 use crate::shot_cli::{End, PathEnd, Played};
 
+mod legend;
+mod table;
+
+use table::RAIL;
+
 /// Drawn length of the table (px).
 const TABLE_PX: f32 = 1000.0;
-/// Rail width (m).
-const RAIL: f32 = 0.1;
 /// Caption line height (px).
 const LINE: f32 = 18.0;
 /// Points per sampled path.
@@ -168,72 +172,6 @@ fn motion_path(
     }
 }
 
-/// Draw the table's pockets: mouths, target segments, and the chosen one highlighted.
-fn pockets(svg: &mut String, f: &Frame, table: &Table, chosen: Option<usize>) {
-    let (length, width) = (table.length(), table.width());
-    for (i, p) in table.pockets().iter().enumerate() {
-        let mouth = (p.b - p.a).length();
-        let centre = p.centre();
-        let is_side = centre.x > length / 3.0 && centre.x < 2.0 * length / 3.0;
-        // A circle through the two jaws, centred on the rail corner (corner pockets) or
-        // a little behind the rail line (side pockets).
-        let (hole, hole_radius) = if is_side {
-            let y = if centre.y < 0.5 * width {
-                -0.2 * mouth
-            } else {
-                width + 0.2 * mouth
-            };
-            (
-                Vec3::new(0.5 * length, y, 0.0),
-                (0.25 * mouth * mouth + 0.04 * mouth * mouth).sqrt(),
-            )
-        } else {
-            let corner = Vec3::new(
-                if centre.x < 0.5 * length { 0.0 } else { length },
-                if centre.y < 0.5 * width { 0.0 } else { width },
-                0.0,
-            );
-            (corner, mouth * core::f32::consts::FRAC_1_SQRT_2)
-        };
-        let class = if chosen == Some(i) {
-            "pocket chosen"
-        } else {
-            "pocket"
-        };
-        let _ = writeln!(svg, r#"<g id="pocket-{i}" class="{class}">"#);
-        let _ = writeln!(
-            svg,
-            r##"<circle class="pocket-mouth" cx="{:.1}" cy="{:.1}" r="{:.1}" fill="#111"/>"##,
-            f.x(hole.x),
-            f.y(hole.y),
-            f.len(hole_radius)
-        );
-        let (stroke, width_px) = if chosen == Some(i) {
-            ("#ffd400", 4.0)
-        } else {
-            ("#9fd3a6", 1.5)
-        };
-        let _ = writeln!(
-            svg,
-            r#"<line class="pocket-target" x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="{stroke}" stroke-width="{width_px}" stroke-dasharray="4 3"/>"#,
-            f.x(p.a.x),
-            f.y(p.a.y),
-            f.x(p.b.x),
-            f.y(p.b.y)
-        );
-        if chosen == Some(i) {
-            let _ = writeln!(
-                svg,
-                r#"<circle class="pocket-highlight" cx="{:.1}" cy="{:.1}" r="{:.1}" fill="none" stroke="{stroke}" stroke-width="3"/>"#,
-                f.x(hole.x),
-                f.y(hole.y),
-                f.len(hole_radius) + 4.0
-            );
-        }
-        let _ = writeln!(svg, "</g>");
-    }
-}
-
 /// The SVG document for a played shot.
 pub fn render(played: &Played) -> String {
     let scene = &played.request.scene;
@@ -251,7 +189,8 @@ pub fn render(played: &Played) -> String {
     let caption: Vec<String> = report.to_string().lines().flat_map(wrap).collect();
     let width_px = 2.0 * margin + TABLE_PX;
     let table_px = 2.0 * margin + table.width() * scale;
-    let height_px = table_px + LINE * caption.len() as f32 + 10.0;
+    let caption_top = table_px + legend::HEIGHT;
+    let height_px = caption_top + LINE * caption.len() as f32 + 10.0;
 
     let mut svg = String::new();
     let _ = writeln!(svg, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
@@ -268,25 +207,9 @@ pub fn render(played: &Played) -> String {
         svg,
         r##"<rect id="background" x="0" y="0" width="{width_px:.0}" height="{height_px:.0}" fill="#ffffff"/>"##
     );
-    // Rails and cloth.
-    let _ = writeln!(
-        svg,
-        r##"<rect id="rail" x="{:.1}" y="{:.1}" width="{:.1}" height="{:.1}" rx="8" fill="#5b3a1e"/>"##,
-        f.x(-RAIL),
-        f.y(table.width() + RAIL),
-        f.len(table.length() + 2.0 * RAIL),
-        f.len(table.width() + 2.0 * RAIL)
-    );
-    let _ = writeln!(
-        svg,
-        r##"<rect id="cloth" x="{:.1}" y="{:.1}" width="{:.1}" height="{:.1}" fill="#1f7a3a"/>"##,
-        f.x(0.0),
-        f.y(table.width()),
-        f.len(table.length()),
-        f.len(table.width())
-    );
+    table::surface(&mut svg, &f, table);
     let chosen = report.target.as_ref().map(|t| t.pocket);
-    pockets(&mut svg, &f, table, chosen);
+    table::pockets(&mut svg, &f, table, chosen);
 
     // Paths.
     let shot = &played.shot;
@@ -392,6 +315,8 @@ pub fn render(played: &Played) -> String {
         }
     }
 
+    legend::key(&mut svg, &f, table_px, width_px, played.request.tip_radii);
+
     // Caption: the guidance text.
     let _ = writeln!(svg, r##"<g id="caption" font-size="13" fill="#222">"##);
     for (i, line) in caption.iter().enumerate() {
@@ -401,7 +326,7 @@ pub fn render(played: &Played) -> String {
         let _ = writeln!(
             svg,
             r#"<text x="{x}" y="{:.1}">{}</text>"#,
-            table_px + LINE * (i as f32 + 0.8),
+            caption_top + LINE * (i as f32 + 0.8),
             escape(text)
         );
     }
