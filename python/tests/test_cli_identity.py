@@ -66,6 +66,16 @@ def random_cases(n: int, seed: int) -> List[Dict[str, Any]]:
 
 RANDOM = random_cases(48, seed=18)
 
+#: ``model="reference"``, the host's f64 solver (the CLI's ``--model reference``): fixed
+#: cases over the spin kinds and a μ(v), and seeded scenes.
+REFERENCE: List[Dict[str, Any]] = [
+    dict(speed=2.0, cut_deg=30.0, spin=(0.0, 40.0, 10.0), mu=0.06, model="reference"),
+    dict(speed=1.5, cut_deg=-45.0, roll=True, model="reference"),
+    dict(speed=3.0, cut_deg=20.0, tip=(0.3, -0.2), model="reference"),
+    dict(speed=2.5, cut_deg=10.0, spin=(5.0, -60.0, 30.0), mu=0.01, mu_b=0.1, mu_c=1.1,
+         model="reference"),
+] + [dict(c, model="reference") for c in random_cases(12, seed=1800)]
+
 
 def cli_json(cli, kwargs: Dict[str, Any]) -> Dict[str, Any]:
     code, out, err = cli(cli_args(kwargs))
@@ -73,7 +83,7 @@ def cli_json(cli, kwargs: Dict[str, Any]) -> Dict[str, Any]:
     return json.loads(out)
 
 
-@pytest.mark.parametrize("kwargs", CASES + RANDOM, ids=lambda k: repr(k))
+@pytest.mark.parametrize("kwargs", CASES + RANDOM + REFERENCE, ids=lambda k: repr(k))
 def test_collide_is_the_clis(cli, kwargs):
     theirs = cli_json(cli, kwargs)
     ours = cuesight.collide(**kwargs).to_dict()
@@ -82,8 +92,8 @@ def test_collide_is_the_clis(cli, kwargs):
 
 def test_collide_many_rows_are_the_clis(cli):
     """One batch per model over the random scenes (spin, roll and tip mixed per row)."""
-    for model in cuesight.MODELS:
-        cases = [c for c in RANDOM if c["model"] == model]
+    for model in cuesight.MODELS + ("reference",):
+        cases = [c for c in RANDOM + REFERENCE if c["model"] == model]
         n = len(cases)
         spin = np.array([c.get("spin", (0.0, 0.0, 0.0)) for c in cases])
         has_spin = np.array(["spin" in c for c in cases])
@@ -159,6 +169,8 @@ INVALID: List[Dict[str, Any]] = [
     dict(speed=2.0, cut_deg=30.0, tip=(0.0, 0.6)),
     dict(speed=2.0, cut_deg=30.0, model="auto", tolerance=0.0),
     dict(speed=2.0, cut_deg=30.0, model="auto", tolerance=2.0),
+    dict(speed=2.0, cut_deg=30.0, mu=-0.1, model="reference"),
+    dict(speed=2.0, cut_deg=30.0, tip=(0.0, 0.6), model="reference"),
 ]
 
 
@@ -174,3 +186,32 @@ def test_invalid_values_raise_the_clis_message(cli, kwargs):
         cuesight.collide_many(**{k: [v] if k not in ("spin", "tip", "roll", "model", "tolerance") else v
                                  for k, v in kwargs.items()})
     assert str(raised_many.value) == "scene 0: " + str(raised.value)
+
+
+def test_tolerance_with_another_model_is_the_clis_usage_error(cli):
+    """Refused as the CLI refuses it (exit 2), by collide and once for a batch."""
+    for model in ("kim-grip", "exact", "reference"):
+        kwargs = dict(speed=2.0, cut_deg=30.0, model=model, tolerance=0.01)
+        code, out, err = cli(cli_args(kwargs))
+        assert code == 2 and out == "" and err.startswith("error: "), (code, out, err)
+        message = err[len("error: "):].rstrip("\n")
+        with pytest.raises(ValueError) as raised:
+            cuesight.collide(**kwargs)
+        assert str(raised.value) == message
+        with pytest.raises(ValueError) as raised_many:
+            cuesight.collide_many([2.0, 3.0], 30.0, model=model, tolerance=0.01)
+        assert str(raised_many.value) == message
+
+
+def test_unknown_model_is_the_clis_message(cli):
+    """The CLI's ``--model`` parser: clap says ``for '--model <MODEL>'``, Python ``for
+    model``; the message after it is the same."""
+    code, out, err = cli(["collide", "--speed", "1", "--cut", "0", "--model", "kimgrip"])
+    assert code == 2 and out == ""
+    head, theirs = err.rstrip("\n").split("': ", 1)
+    assert head == "error: invalid value 'kimgrip' for '--model <MODEL>"
+    for call in (cuesight.collide, cuesight.collide_many):
+        with pytest.raises(ValueError) as raised:
+            call(1.0, 0.0, model="kimgrip")
+        assert str(raised.value) == "invalid value 'kimgrip' for model: " + theirs
+    assert "reference" in theirs
