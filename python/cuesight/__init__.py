@@ -1,7 +1,10 @@
 """cuesight: what happens when a spinning cue ball hits a resting object ball.
 
 Python bindings of the cuesight engine (the Rust crate ``cuesight``): throw, cue-ball
-deflection, spin transfer and hop, with the models of ``cuesight collide``.
+deflection, spin transfer and hop, with the models of ``cuesight collide``; shot
+guidance (``cuesight shot``) and the friction-law fit to measured throw
+(``cuesight calibrate``). Each function calls the CLI's own code and returns what the
+CLI prints with ``--json``.
 
 Frame (the collision frame of ``cuesight collide``): ``x`` from the cue-ball centre to
 the object-ball centre, ``z`` up, ``y = z × x``. SI units (m, s, kg, rad/s); angles in
@@ -18,7 +21,11 @@ prints, and inputs are rounded to f32 as the CLI's are.
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass
-from typing import Any, Dict, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+
+import json
+import os
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -35,13 +42,16 @@ __all__ = [
     "Collisions",
     "collide",
     "collide_many",
+    "shot",
+    "calibrate",
 ]
 
 __version__: str = _cuesight.__version__
 
-#: The models, cheapest first (``auto`` picks among the others); the names of
-#: ``cuesight collide --model``. ``reference``, the f64 first-principles solver, is
-#: the CLI's only. ``Collisions.model_used`` holds indices into this tuple.
+#: The core's models, cheapest first (``auto`` picks among the others); the names of
+#: ``cuesight collide --model``. ``model="reference"``, the host's f64
+#: first-principles solver (milliseconds a scene), is accepted besides.
+#: ``Collisions.model_used`` holds indices into this tuple.
 MODELS: Tuple[str, ...] = tuple(_cuesight.MODELS)
 
 #: Contact regimes; ``Collisions.regime`` holds indices into this tuple (−1: refused).
@@ -198,7 +208,8 @@ def collide(
     restitution: energetic coefficient of restitution e* (default 0.95).
     mu_s: object-ball/table static friction μ_s (default 0.3).
     radius, mass: ball radius R (m, default 0.028575) and mass M (kg, default 0.17).
-    model: one of ``MODELS`` (default ``kim-grip``).
+    model: one of ``MODELS`` (default ``kim-grip``), or ``reference``: the f64
+        first-principles solver of ``collide --model reference`` (a few milliseconds).
     tolerance: with ``model="auto"``: the accepted error of the tier it picks, relative
         to U, in (0, 1] (default 1e-3); the result then has ``model_used`` and
         ``error_estimate``.
@@ -295,7 +306,8 @@ def collide_many(
     Each scalar input is a number (the same for every scene) or a 1-D array of n values;
     ``spin`` is ``(3,)`` or ``(n, 3)``, ``tip`` ``(2,)`` or ``(n, 2)``, ``roll`` a bool
     or n bools. Inputs are rounded to f32. ``model`` and ``tolerance`` are one for the
-    batch. ``errors="raise"`` (default): the first invalid scene raises ValueError
+    batch; ``model="reference"`` works too, at a few milliseconds a scene (with it, one
+    batch runs at a time in the process). ``errors="raise"`` (default): the first invalid scene raises ValueError
     (``scene i: <the engine's message>``); ``errors="nan"``: it gets NaN, regime −1 and
     ``valid`` false, and the others are predicted.
     """
@@ -369,3 +381,169 @@ def collide_many(
         errors == "raise",
     )
     return Collisions(**out)
+
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+def _path(value: Any) -> Optional[str]:
+    """``value`` as a file name if it is one (str or os.PathLike), else None."""
+    if isinstance(value, (str, os.PathLike)):
+        return os.fspath(value)
+    return None
+
+
+def _json_value(value: Any) -> Any:
+    """numpy scalars and arrays as plain numbers and lists (for ``json.dumps``)."""
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    raise TypeError(f"{type(value).__name__} is not a JSON value")
+
+
+def _dumps(value: Any) -> str:
+    return json.dumps(value, default=_json_value, allow_nan=False)
+
+
+def shot(
+    scene: Union[Mapping, PathLike, None] = None,
+    *,
+    params: Optional[PathLike] = None,
+    table: Optional[str] = None,
+    cue: Optional[Sequence[float]] = None,
+    balls: Optional[Sequence[Sequence[float]]] = None,
+    object: Optional[int] = None,
+    pocket: Union[int, str, None] = None,
+    speed: Optional[float] = None,
+    tip: Optional[Sequence[float]] = None,
+    aim: Optional[float] = None,
+    solve: bool = False,
+    model: Optional[str] = None,
+    tolerance: Optional[float] = None,
+    mu: Optional[float] = None,
+    restitution: Optional[float] = None,
+    mu_s: Optional[float] = None,
+    mu_cloth: Optional[float] = None,
+    mu_roll: Optional[float] = None,
+    radius: Optional[float] = None,
+    mass: Optional[float] = None,
+    cue_mass: Optional[float] = None,
+    tip_restitution: Optional[float] = None,
+    svg: Optional[PathLike] = None,
+) -> Dict[str, Any]:
+    """Shot guidance, as ``cuesight shot --json`` gives it: the dict of its JSON.
+
+    scene: a scene as a dict (the keys of a scene file, docs/shot-cli.md: ``table``,
+        ``cue``, ``balls``, ``object``, ``pocket``, ``speed``, ``tip``, ``aim``,
+        ``model``, ``mu``, ...), or the path of a ``.toml`` or ``.json`` scene file
+        (``--scene``), or None (the keyword arguments alone).
+    The keyword arguments are ``shot``'s flags and override the scene's keys: ``params``
+    (a JSON file of contact parameters, e.g. what ``calibrate`` returns saved with
+    ``json.dump``; between the scene and the flags), ``table`` (``pool``, ``snooker``,
+    ``carom``), ``cue`` (x, y) and ``balls`` [(x, y), ...] (m, table frame; a non-empty
+    ``balls`` replaces the scene's), ``object``, ``pocket`` (index or name), ``speed``
+    (cue speed, m/s), ``tip`` (side, height in ball radii), ``aim`` (degrees; none:
+    solve for the pocket), ``solve`` (ignore the scene's aim), ``model`` and
+    ``tolerance``, ``mu``, ``restitution``, ``mu_s``, ``mu_cloth``, ``mu_roll``,
+    ``radius``, ``mass``, ``cue_mass``, ``tip_restitution``. ``svg``: also write the
+    drawing of ``shot --svg`` to that file.
+
+    Numbers are those of the JSON: the engine's f32 printed as the shortest decimal
+    that reads back to it (``numpy.float32(v)`` has its bits). Raises ValueError with
+    the CLI's message (off the table, no aim found, unknown key, ...).
+    """
+    scene_file = scene_json = None
+    if scene is None:
+        pass
+    elif isinstance(scene, Mapping):
+        scene_json = _dumps(dict(scene))
+    else:
+        scene_file = _path(scene)
+        if scene_file is None:
+            raise TypeError(
+                f"scene must be a dict or a path, not {type(scene).__name__}"
+            )
+    text = _cuesight._shot(
+        scene_file,
+        scene_json,
+        None if params is None else os.fspath(params),
+        table,
+        None if cue is None else _floats(cue, 2, "cue"),
+        None if balls is None else [_floats(b, 2, "balls[]") for b in balls],
+        object,
+        None if pocket is None else str(pocket),
+        speed,
+        None if tip is None else _floats(tip, 2, "tip"),
+        aim,
+        solve,
+        model,
+        tolerance,
+        mu,
+        restitution,
+        mu_s,
+        mu_cloth,
+        mu_roll,
+        radius,
+        mass,
+        cue_mass,
+        tip_restitution,
+        None if svg is None else os.fspath(svg),
+    )
+    return json.loads(text)
+
+
+def calibrate(
+    throw: Union[PathLike, Iterable[Mapping]],
+    *,
+    fit: str = "mu-v",
+    model: str = "kim-grip",
+    restitution: float = 0.95,
+    mu_s: float = 0.3,
+    default_uncertainty: float = 1.0,
+    cross_validate: bool = False,
+    max_evaluations: int = 100_000,
+) -> Dict[str, Any]:
+    """Fit the ball–ball friction law to measured throw, as ``cuesight calibrate --json``
+    does: the dict of its JSON (the parameters under ``collide``'s names, their
+    ``stderr`` and ``ci95``, ``rms_deg``, ``max_deg``, per-point ``residuals`` and, with
+    ``cross_validate``, ``cross_validation``).
+
+    throw: a file as ``--throw`` reads it (JSON, or CSV with columns ``cut_deg``,
+        ``speed_mps``, ``spin``, ``throw_deg``[, ``uncertainty_deg``]), or the points
+        themselves: dicts of the JSON point schema of docs/calibration.md
+        (``cut_deg``, ``speed_mps``, ``throw_deg``, optional ``spin``, ``spin_rad_s``,
+        ``uncertainty_deg``, ``id``, ``series``).
+    fit: ``mu`` (constant μ), ``mu-v`` (μ(v) = mu + mu_b·exp(−mu_c·v)) or ``mu-v-e``
+        (μ(v) and e*).
+    model: the model of the throw: ``kim-grip``, ``exact`` or ``reference`` (slower).
+    restitution, mu_s: e* when not fitted (the start value with ``mu-v-e``) and the
+        object-ball/table friction.
+    default_uncertainty: the uncertainty (degrees) of points that give none.
+    cross_validate: also fit each series left out in turn and predict it.
+    max_evaluations: give up after this many model evaluations.
+
+    The fit runs without the GIL. Like the CLI, a fit longer than a second prints a
+    progress line on stderr every second. Raises ValueError with the CLI's message
+    (unreadable file, a value out of range naming its line or point, too few points,
+    no convergence).
+    """
+    path = _path(throw)
+    points = None
+    if path is None:
+        if isinstance(throw, Mapping):
+            raise TypeError("throw must be a path or a list of point dicts, not a dict")
+        points = [_dumps(p) for p in throw]
+    return json.loads(
+        _cuesight._calibrate(
+            path,
+            points,
+            fit,
+            model,
+            restitution,
+            mu_s,
+            default_uncertainty,
+            cross_validate,
+            max_evaluations,
+        )
+    )
