@@ -393,56 +393,93 @@ fn main() {
     eprintln!("wrote target/tmp/low-speed-sweep.csv, target/tmp/low-speed-limit.txt, docs/low-speed-limit.svg");
 }
 
-/// Log–log plot of the error against speed for the μ = 0.05 scenarios.
+/// Log–log plots of the error against speed for the μ = 0.05 scenarios: one panel per
+/// spin (stun, roll, draw, side), one line per cut angle, the 1 % threshold dashed and
+/// each line's last crossing of it marked.
 fn svg(speeds: &[f64], rows: &[Row]) -> String {
-    let (w, h, left, right, top, bottom) = (760.0, 500.0, 70.0, 190.0, 20.0, 50.0);
+    let (panel_w, panel_h) = (330.0, 220.0);
+    let (left, top, gap_x, gap_y, legend_h) = (70.0, 64.0, 90.0, 70.0, 40.0);
+    let (w, h) = (
+        left + 2.0 * panel_w + gap_x + 20.0,
+        top + 2.0 * panel_h + gap_y + legend_h + 40.0,
+    );
     let (x0, x1) = (speeds[0].log10(), speeds.last().unwrap().log10());
     let (y0, y1) = (-4.0f64, 0.0f64);
-    let px = |u: f64| left + (u.log10() - x0) / (x1 - x0) * (w - left - right);
-    let py = |e: f64| top + (y1 - e.max(1e-4).log10()) / (y1 - y0) * (h - top - bottom);
+    let colours = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd"];
     let mut s = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
     );
-    for d in -3..=0 {
-        let u = 10f64.powi(d);
-        let x = px(u);
-        let _ = writeln!(s, "<line x1=\"{x:.1}\" y1=\"{top}\" x2=\"{x:.1}\" y2=\"{:.1}\" stroke=\"#ddd\"/><text x=\"{x:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{u}</text>", h - bottom, h - bottom + 16.0);
-    }
-    for d in -4..=0 {
-        let e = 10f64.powi(d);
-        let y = py(e);
-        let _ = writeln!(s, "<line x1=\"{left}\" y1=\"{y:.1}\" x2=\"{:.1}\" y2=\"{y:.1}\" stroke=\"#ddd\"/><text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}%</text>", w - right, left - 6.0, y + 4.0, 100.0 * e);
-    }
-    let y = py(THRESHOLD);
-    let _ = writeln!(s, "<line x1=\"{left}\" y1=\"{y:.1}\" x2=\"{:.1}\" y2=\"{y:.1}\" stroke=\"black\" stroke-dasharray=\"4 3\"/>", w - right);
     let _ = writeln!(
         s,
-        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">cue-ball speed U (m/s)</text>",
-        0.5 * (left + w - right),
-        h - 10.0
+        "<text x=\"{left}\" y=\"20\" font-size=\"14\">Impulsive model against the time-domain (Hertzian) solver, μ = 0.05: max(|Δv|, R|Δω|) / U</text>"
     );
-    let _ = writeln!(s, "<text transform=\"translate(16 {:.1}) rotate(-90)\" text-anchor=\"middle\">max(|Δv|, R|Δω|) / U, time-domain vs impulsive</text>", 0.5 * (top + h - bottom));
-    let colours = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd"];
-    let dashes = ["", "8 3", "3 3", "1 3"];
-    for (legend, r) in rows.iter().filter(|r| r.scenario.mu == 0.05).enumerate() {
-        let ci = SPINS.iter().position(|k| *k == r.scenario.spin).unwrap();
-        let di = CUTS.iter().position(|c| *c == r.scenario.cut_deg).unwrap();
-        let points: Vec<String> = speeds
-            .iter()
-            .zip(&r.curve)
-            .map(|(&u, &e)| format!("{:.1},{:.1}", px(u), py(e)))
-            .collect();
+    for (k, spin) in SPINS.iter().enumerate() {
+        let (ox, oy) = (
+            left + (k % 2) as f64 * (panel_w + gap_x),
+            top + (k / 2) as f64 * (panel_h + gap_y),
+        );
+        let px = |u: f64| ox + (u.log10() - x0) / (x1 - x0) * panel_w;
+        let py = |e: f64| oy + (y1 - e.max(1e-4).log10()) / (y1 - y0) * panel_h;
+        let _ = writeln!(s, "<g id=\"panel-{}\">", spin.label());
         let _ = writeln!(
             s,
-            "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" stroke-dasharray=\"{}\" points=\"{}\"/>",
-            colours[ci],
-            dashes[di],
-            points.join(" ")
+            "<rect x=\"{ox}\" y=\"{oy}\" width=\"{panel_w}\" height=\"{panel_h}\" fill=\"none\" stroke=\"#999\"/><text x=\"{:.1}\" y=\"{:.1}\" font-size=\"13\" font-weight=\"bold\">{}</text>",
+            ox,
+            oy - 8.0,
+            spin.label()
         );
-        let ly = top + 14.0 + 16.0 * legend as f64;
-        let lx = w - right + 12.0;
-        let _ = writeln!(s, "<line x1=\"{lx}\" y1=\"{ly}\" x2=\"{:.1}\" y2=\"{ly}\" stroke=\"{}\" stroke-width=\"1.5\" stroke-dasharray=\"{}\"/><text x=\"{:.1}\" y=\"{:.1}\">{}</text>", lx + 28.0, colours[ci], dashes[di], lx + 34.0, ly + 4.0, r.scenario.label());
+        for d in -3..=0 {
+            let u = 10f64.powi(d);
+            let x = px(u);
+            let _ = writeln!(s, "<line x1=\"{x:.1}\" y1=\"{oy}\" x2=\"{x:.1}\" y2=\"{:.1}\" stroke=\"#e4e4e4\"/><text x=\"{x:.1}\" y=\"{:.1}\" text-anchor=\"middle\" font-size=\"11\">{u}</text>", oy + panel_h, oy + panel_h + 14.0);
+        }
+        for d in -4..=0 {
+            let e = 10f64.powi(d);
+            let y = py(e);
+            let _ = writeln!(s, "<line x1=\"{ox}\" y1=\"{y:.1}\" x2=\"{:.1}\" y2=\"{y:.1}\" stroke=\"#e4e4e4\"/><text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\" font-size=\"11\">{}%</text>", ox + panel_w, ox - 5.0, y + 4.0, 100.0 * e);
+        }
+        let y = py(THRESHOLD);
+        let _ = writeln!(s, "<line x1=\"{ox}\" y1=\"{y:.1}\" x2=\"{:.1}\" y2=\"{y:.1}\" stroke=\"black\" stroke-dasharray=\"4 3\"/>", ox + panel_w);
+        for r in rows.iter().filter(|r| r.scenario.mu == 0.05 && r.scenario.spin == *spin) {
+            let ci = CUTS.iter().position(|c| *c == r.scenario.cut_deg).unwrap();
+            let points: Vec<String> = speeds
+                .iter()
+                .zip(&r.curve)
+                .map(|(&u, &e)| format!("{:.1},{:.1}", px(u), py(e)))
+                .collect();
+            let _ = writeln!(
+                s,
+                "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.8\" points=\"{}\"/>",
+                colours[ci],
+                points.join(" ")
+            );
+            // The limit speed the sweep found (the table's "full" column).
+            if let Some(u) = r.full {
+                let _ = writeln!(
+                    s,
+                    "<circle cx=\"{:.1}\" cy=\"{y:.1}\" r=\"3.5\" fill=\"{}\"/>",
+                    px(u),
+                    colours[ci]
+                );
+            }
+        }
+        let _ = writeln!(s, "</g>");
     }
+    let bottom = top + 2.0 * panel_h + gap_y;
+    let _ = writeln!(
+        s,
+        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">cue-ball speed U (m/s); dashed: 1 %, dots: the speed above which each line stays under it</text>",
+        left + panel_w + 0.5 * gap_x,
+        bottom + 34.0
+    );
+    let ly = bottom + 58.0;
+    let _ = writeln!(s, "<g id=\"legend\"><text x=\"{left}\" y=\"{:.1}\">cut angle:</text>", ly + 4.0);
+    for (ci, cut) in CUTS.iter().enumerate() {
+        let lx = left + 80.0 + 110.0 * ci as f64;
+        let _ = writeln!(s, "<line x1=\"{lx}\" y1=\"{ly}\" x2=\"{:.1}\" y2=\"{ly}\" stroke=\"{}\" stroke-width=\"2\"/><text x=\"{:.1}\" y=\"{:.1}\">{cut}°</text>", lx + 28.0, colours[ci], lx + 34.0, ly + 4.0);
+    }
+    let _ = writeln!(s, "</g>");
+    let _ = writeln!(s, "<text transform=\"translate(16 {:.1}) rotate(-90)\" text-anchor=\"middle\">max(|Δv|, R|Δω|) / U</text>", top + panel_h + 0.5 * gap_y);
     s.push_str("</svg>\n");
     s
 }
