@@ -51,9 +51,11 @@
 //!
 //! * [`Invariant::Energy`]: total kinetic energy
 //!   `E = Σ_balls ½ M |v|² + ½ ν M R² |ω|²` (J) does not grow:
-//!   `E' ≤ E (1 + 1e-6)`. Friction and inelastic restitution only dissipate; a table
-//!   impulse does no net work on a ball that stays on the table with a non-moving
-//!   contact; nothing else acts.
+//!   `E' ≤ E (1 + 1e-6)`. The only forces are the contact forces: Coulomb friction
+//!   opposes its contact's slip and so only dissipates, the ball–ball normal force
+//!   returns at most the work of compression (Stronge's `e* ≤ 1`), and the table's normal
+//!   force does no work (it acts only while its ball's contact point does not move
+//!   vertically).
 //! * [`Invariant::BallNormal`]: `J_n ≥ 0`; the contact can only push.
 //! * [`Invariant::BallCone`]: `|J_t| ≤ μ_max J_n`. Coulomb: at every instant
 //!   `|dJ_t| ≤ μ(s) dJ_n` with `s` the slip speed, so `|J_t| = |∫ dJ_t| ≤ ∫ μ(s) dJ_n ≤
