@@ -13,7 +13,7 @@
 //! forward stroke, tip contact, vibration, follow-through, elevation 2–12°, accelerometer
 //! bias ±50 mg, gyro bias ±1 dps), then as the acceptance streams of `streaming.rs` draw
 //! them: the address (rest), the pause at the back, the pendulum tilt at the back, the
-//! still gap after the follow-through (ranges in [`TraceConfig`]). [`kinematic::stream`]
+//! still gap after the follow-through (ranges in [`TraceConfig`]). `kinematic::stream`
 //! joins them (one sensor: the first stroke's biases for all; each stroke starts at the
 //! elevation the previous one ended at) and gives `ax` (cue axis, gravity `−g sin θ`,
 //! bias, noise, clipped at ±16 g) and the pitch rate (`gy`, bias, 0.29 dps RMS noise).

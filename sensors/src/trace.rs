@@ -118,7 +118,7 @@ impl fmt::Display for TraceError {
 impl core::error::Error for TraceError {}
 
 /// Streaming trace parser: [`TraceParser::push`] each byte, [`TraceParser::finish`] at the
-/// end of the input. 80-odd bytes, no allocation.
+/// end of the input. 80 bytes on a 32-bit target (88 on a 64-bit host), no allocation.
 #[derive(Clone, Debug)]
 pub struct TraceParser {
     /// The line so far, with room for a `\r` after [`MAX_LINE_LEN`] bytes.

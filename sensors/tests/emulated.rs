@@ -516,3 +516,9 @@ fn a_shipped_trace_round_trips_through_the_driver() {
     assert!(count > 10_000, "{count} samples");
     assert_eq!(part.overruns(), Overruns::default());
 }
+
+/// No heap, fixed size: the module docs' 68 bytes.
+#[test]
+fn the_model_is_68_bytes() {
+    assert_eq!(std::mem::size_of::<EmulatedLsm6dsox>(), 68);
+}

@@ -346,3 +346,23 @@ fn shipped_traces_hold_what_their_truth_files_say() {
     }
     assert!(checked >= 8, "{checked} strokes checked in {dir}");
 }
+
+/// The parser's state is its line buffer and a few counters: 88 bytes on a 64-bit host
+/// (80 on the 32-bit target, where `usize` is 4 bytes), as its docs say.
+#[test]
+fn the_parser_is_a_line_buffer_and_counters() {
+    let expected = MAX_LINE_LEN + 1 + 2 + 2 * 4 + std::mem::size_of::<usize>();
+    let size = std::mem::size_of::<TraceParser>();
+    assert!(
+        size >= expected && size <= expected.next_multiple_of(8),
+        "{size} vs {expected}"
+    );
+    assert_eq!(
+        size,
+        if cfg!(target_pointer_width = "64") {
+            88
+        } else {
+            80
+        }
+    );
+}
