@@ -645,3 +645,70 @@ fn bad_configs_are_named() {
         assert!(StreamingEstimator::new(&StreamConfig::new(rate)).is_ok());
     }
 }
+
+/// The stream `cargo xtask bench` counts the estimator's instructions on
+/// (`bench-firmware/src/bin/stream_count.rs`): five acceptance strokes (8 mg, tilt and
+/// gyro, 0.5–3 s still between them) with the paths a plain stroke does not take: a
+/// 1.2 s pause at the back of the second (a trusted rest: the speed check at its end
+/// re-anchors the integration there), a second contact 20 ms after the third's (a
+/// double hit), and a −30 g knock in the fourth's 1.5 s address.
+fn bench_stream() -> (Vec<i16>, Vec<i16>, Vec<Truth>, usize) {
+    let mut rng = ChaCha8Rng::seed_from_u64(0xBE4C);
+    let mut strokes: Vec<_> = (0..5).map(|_| acceptance_stroke(&mut rng)).collect();
+    strokes[1].0.pause = 1.2;
+    let dv = strokes[2].0.delta_v;
+    strokes[2].0.second_hit = Some((0.020, 0.5 * dv));
+    strokes[3].0.rest = 1.5;
+    let (mut accel, pitch, truth) = kinematic::stream(&strokes, FS, 8e-3 * kinematic::G, &mut rng);
+    let t = &truth[3];
+    let start = t.contact - t.stroke.contact_sample(FS);
+    let knock = start + ((t.stroke.times()[1] - 1.0) * FS) as usize;
+    accel[knock..knock + 4].fill((-30.0 / 0.488e-3) as i16);
+    (accel, pitch, truth, knock)
+}
+
+/// The bench stream gives what it was made of: the five strokes (impact within 2
+/// samples, speed within 1 %), the double hit after the third, a fault at the knock.
+/// With `CUESIGHT_BENCH_STREAM=FILE` it also writes the stream for the bench firmware:
+/// magic `b"CSS1"`, the rate (`f32`), the sample count (`u32`), then per sample the
+/// accelerometer and pitch words (`i16`), all little-endian.
+#[test]
+fn the_bench_stream_gives_its_strokes_and_faults() {
+    let (accel, pitch, truth, knock) = bench_stream();
+    let mut est = estimator(FS);
+    let events = events(&mut est, &accel, Some(&pitch));
+    assert_eq!(events.len(), 7, "{events:?}");
+    let (errors, worst) = check_stream(
+        &[&events[..3], &events[5..]].concat(),
+        &[&truth[..3], &truth[3..]].concat(),
+    );
+    assert!(worst <= 2, "impact {worst} samples off");
+    assert!(errors.iter().all(|e| e.abs() <= 0.01), "{errors:?}");
+    let StreamEvent::Stroke(third) = events[2] else {
+        unreachable!()
+    };
+    assert!(
+        matches!(events[3], StreamEvent::Fault(StreamFault::DoubleHit { first, .. }) if first == third.impact_index),
+        "{events:?}"
+    );
+    assert!(
+        matches!(
+            events[4],
+            StreamEvent::Fault(
+                StreamFault::NotAtRest { index } | StreamFault::NotForward { impact: index, .. }
+            ) if index.abs_diff(knock as u64) <= 4
+        ),
+        "knock at {knock}: {events:?}"
+    );
+    assert_eq!(est.finish(), None);
+    if let Some(path) = std::env::var_os("CUESIGHT_BENCH_STREAM") {
+        let mut bytes = b"CSS1".to_vec();
+        bytes.extend((FS as f32).to_le_bytes());
+        bytes.extend(u32::try_from(accel.len()).unwrap().to_le_bytes());
+        for (a, p) in accel.iter().zip(&pitch) {
+            bytes.extend(a.to_le_bytes());
+            bytes.extend(p.to_le_bytes());
+        }
+        std::fs::write(&path, bytes).unwrap();
+    }
+}
