@@ -5,6 +5,11 @@
 //! (`cuesight_host::grid::scenes`); its path comes in `CUESIGHT_BENCH_SCENES`, falling
 //! back to `../target/bench/scenes.bin`. Without either, an empty set is baked and the
 //! bench binary reports that instead of measuring (the probe binary needs no scenes).
+//!
+//! Likewise the sample stream of the streaming estimator's bench (`stream-count`),
+//! written by `cargo xtask bench` from the sensors crate's kinematic stroke model
+//! (`sensors/tests/streaming.rs`, `the_bench_stream_gives_its_strokes_and_faults`): its
+//! path comes in `CUESIGHT_BENCH_STREAM`, falling back to `../target/bench/stream.bin`.
 
 use std::{env, fs, path::PathBuf};
 
@@ -20,22 +25,23 @@ fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rustc-link-arg-bins=-Tlink.x");
 
-    println!("cargo:rerun-if-env-changed=CUESIGHT_BENCH_SCENES");
-    let scenes = env::var_os("CUESIGHT_BENCH_SCENES")
+    bake(&manifest, &out, "CUESIGHT_BENCH_SCENES", "scenes.bin");
+    bake(&manifest, &out, "CUESIGHT_BENCH_STREAM", "stream.bin");
+}
+
+/// Copies the file named by `variable` (default `../target/bench/<name>`) into
+/// `OUT_DIR/<name>`, or writes an empty one there.
+fn bake(manifest: &std::path::Path, out: &std::path::Path, variable: &str, name: &str) {
+    println!("cargo:rerun-if-env-changed={variable}");
+    let source = env::var_os(variable)
         .map(PathBuf::from)
-        .unwrap_or_else(|| {
-            manifest
-                .join("..")
-                .join("target")
-                .join("bench")
-                .join("scenes.bin")
-        });
-    println!("cargo:rerun-if-changed={}", scenes.display());
-    let baked = out.join("scenes.bin");
-    if scenes.is_file() {
-        fs::copy(&scenes, &baked)
-            .unwrap_or_else(|e| panic!("copying {} into OUT_DIR: {e}", scenes.display()));
+        .unwrap_or_else(|| manifest.join("..").join("target").join("bench").join(name));
+    println!("cargo:rerun-if-changed={}", source.display());
+    let baked = out.join(name);
+    if source.is_file() {
+        fs::copy(&source, &baked)
+            .unwrap_or_else(|e| panic!("copying {} into OUT_DIR: {e}", source.display()));
     } else {
-        fs::write(&baked, []).expect("writing an empty scene set");
+        fs::write(&baked, []).unwrap_or_else(|e| panic!("writing an empty {name}: {e}"));
     }
 }

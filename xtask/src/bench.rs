@@ -17,6 +17,10 @@
 //! Results: `target/bench/tradeoff.json`, and the report `tradeoff.md` with its plot
 //! `tradeoff.svg` beside it in `target/bench/`; with `--update-docs` the report and the
 //! plot replace the tracked `docs/tradeoff.md` and `docs/tradeoff.svg` instead.
+//!
+//! Besides, the streaming stroke estimator (issue 15): instructions per sample on a
+//! stroke stream and its code size, in the shipped firmware's build configuration
+//! ([`stream`]; `target/bench/stream.json`, and `--stream-only` for just that).
 
 mod disasm;
 mod firmware;
@@ -24,6 +28,7 @@ mod host;
 mod plot;
 mod regression;
 mod report;
+mod stream;
 
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -53,6 +58,10 @@ pub struct Args {
     /// docs/tradeoff.svg (without it they go to target/bench/, beside tradeoff.json).
     #[arg(long)]
     update_docs: bool,
+    /// Only the streaming stroke estimator's figures (issue 15: instructions per
+    /// sample and code size on the Cortex-M4F), written to target/bench/stream.json.
+    #[arg(long)]
+    stream_only: bool,
 }
 
 /// Where the measurements go: `target/bench/` (honours `CARGO_TARGET_DIR`).
@@ -88,16 +97,28 @@ pub fn run(args: &Args) -> Result {
     let dir = out_dir();
     std::fs::create_dir_all(&dir)
         .map_err(|e| Failure::new(format!("creating {}: {e}", dir.display())))?;
+    let timeout = Duration::from_secs(args.timeout);
+    if args.stream_only {
+        section("streaming estimator under QEMU (-icount shift=0, instruction trace)");
+        stream::run(&dir, timeout)?;
+        println!(
+            "xtask bench: streaming estimator done in {:.0} s",
+            started.elapsed().as_secs_f64()
+        );
+        return Ok(());
+    }
 
     section("scene set");
     let scenes = dir.join("scenes.bin");
     host::write_scenes(args.seed, args.scenes, args.counted, &scenes)?;
 
     section("bench firmware under QEMU (-icount shift=0)");
-    let timeout = Duration::from_secs(args.timeout);
     let runs = firmware::measure(&scenes, &dir, timeout)?;
     let trace_check = firmware::trace_check(&scenes, &dir, timeout)?;
     let (branches, _) = regression::count_branches()?;
+
+    section("streaming estimator under QEMU (-icount shift=0, instruction trace)");
+    stream::run(&dir, timeout)?;
 
     section("errors against the reference");
     let listings: Vec<PathBuf> = runs

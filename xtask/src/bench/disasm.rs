@@ -79,7 +79,7 @@ fn run_probe(elf: &std::path::Path) -> Result {
 
 /// `llvm-objdump` of the toolchain's `llvm-tools` component, added with rustup if
 /// missing; otherwise one on PATH.
-fn llvm_objdump() -> Result<PathBuf> {
+pub(super) fn llvm_objdump() -> Result<PathBuf> {
     if let Some(found) = find_objdump() {
         return Ok(found);
     }
@@ -113,14 +113,14 @@ fn find_objdump() -> Option<PathBuf> {
 }
 
 /// One disassembled function.
-struct Function {
-    name: String,
+pub(super) struct Function {
+    pub(super) name: String,
     /// `(address, mnemonic, operands)`.
-    instructions: Vec<(u64, String, String)>,
+    pub(super) instructions: Vec<(u64, String, String)>,
 }
 
 /// Parses `llvm-objdump -d --no-show-raw-insn` output into functions by start address.
-fn parse(listing: &str) -> BTreeMap<u64, Function> {
+pub(super) fn parse(listing: &str) -> BTreeMap<u64, Function> {
     let mut functions = BTreeMap::new();
     let mut current: Option<u64> = None;
     for line in listing.lines() {
@@ -162,7 +162,7 @@ fn parse(listing: &str) -> BTreeMap<u64, Function> {
 }
 
 /// `b`, `bl`, `b.w`, `bne`, `beq.w`, `cbz`, `blx` … (not `bic`, `bfi`, `bkpt`, `bx`).
-fn is_branch(mnemonic: &str) -> bool {
+pub(super) fn is_branch(mnemonic: &str) -> bool {
     let m = mnemonic.strip_suffix(".w").unwrap_or(mnemonic);
     const CONDITIONS: [&str; 15] = [
         "", "eq", "ne", "cs", "hs", "cc", "lo", "mi", "pl", "vs", "vc", "hi", "ls", "ge", "lt",
@@ -188,7 +188,7 @@ fn is_indirect(mnemonic: &str, operands: &str) -> bool {
 }
 
 /// The first `0x…` operand: a direct branch's absolute target.
-fn target(operands: &str) -> Option<u64> {
+pub(super) fn target(operands: &str) -> Option<u64> {
     let hex = operands
         .split_whitespace()
         .find_map(|t| t.strip_prefix("0x"))?;

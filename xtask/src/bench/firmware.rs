@@ -210,6 +210,28 @@ pub(super) fn run_qemu_with(
     }
 }
 
+/// QEMU's option for one guest instruction per translation block: `-singlestep` before
+/// 8.1, `-accel tcg,one-insn-per-tb=on` since (the old one is gone in 9.0).
+pub fn one_insn_per_tb() -> Vec<&'static str> {
+    insn_option(&cmd::probe(Command::new("qemu-system-arm").arg("--version")).unwrap_or_default())
+}
+
+/// [`one_insn_per_tb`] for the output of `qemu-system-arm --version`.
+fn insn_option(version: &str) -> Vec<&'static str> {
+    let number = version
+        .split_whitespace()
+        .skip_while(|w| *w != "version")
+        .nth(1)
+        .unwrap_or_default();
+    let mut parts = number.split('.').map(|p| p.parse::<u32>().unwrap_or(0));
+    let (major, minor) = (parts.next().unwrap_or(0), parts.next().unwrap_or(0));
+    if (major, minor) >= (8, 1) {
+        vec!["-accel", "tcg,one-insn-per-tb=on"]
+    } else {
+        vec!["-singlestep"]
+    }
+}
+
 /// The timer method against an instruction trace, on one `KimGrip` prediction.
 pub struct TraceCheck {
     /// Instructions per prediction from the timer (prediction minus empty call).
@@ -221,7 +243,7 @@ pub struct TraceCheck {
 }
 
 /// Runs `bench-firmware`'s `trace-check` image with QEMU logging every instruction
-/// (`-accel tcg,one-insn-per-tb=on -d exec,nochain`) and checks that the timer's count
+/// (one per translation block, [`one_insn_per_tb`], and `-d exec,nochain`) and checks that the timer's count
 /// equals the traced call length minus the traced empty call.
 pub fn trace_check(scenes: &Path, dir: &Path, timeout: Duration) -> Result<TraceCheck> {
     const TRACE_BIN: &str = "trace-check";
@@ -239,19 +261,9 @@ pub fn trace_check(scenes: &Path, dir: &Path, timeout: Duration) -> Result<Trace
     let listing = dir.join("qemu-trace-check.txt");
     let trace = dir.join("trace-check.log");
     let trace_arg = trace.display().to_string();
-    run_qemu_with(
-        &[
-            "-accel",
-            "tcg,one-insn-per-tb=on",
-            "-d",
-            "exec,nochain",
-            "-D",
-            &trace_arg,
-        ],
-        &elf,
-        &listing,
-        timeout,
-    )?;
+    let mut options = one_insn_per_tb();
+    options.extend(["-d", "exec,nochain", "-D", &trace_arg]);
+    run_qemu_with(&options, &elf, &listing, timeout)?;
     let text = std::fs::read_to_string(&listing)
         .map_err(|e| Failure::new(format!("reading {}: {e}", listing.display())))?;
     let numbers: Vec<f64> = text
@@ -402,4 +414,21 @@ fn parse(build: &'static Build, listing: PathBuf) -> Result<Run> {
         calibration,
         counts,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn qemu_version_picks_the_option() {
+        let old = "QEMU emulator version 7.2.22 (Debian 1:7.2+dfsg-7+deb12u18+b3)\nCopyright";
+        assert_eq!(insn_option(old), ["-singlestep"]);
+        let new = "QEMU emulator version 8.2.2 (Debian 1:8.2.2+ds-0ubuntu1)";
+        assert_eq!(insn_option(new), ["-accel", "tcg,one-insn-per-tb=on"]);
+        assert_eq!(
+            insn_option("QEMU emulator version 10.0.0"),
+            ["-accel", "tcg,one-insn-per-tb=on"]
+        );
+    }
 }
