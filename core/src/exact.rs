@@ -44,6 +44,10 @@ pub const STEPS: usize = 24;
 /// Newton/bisection refinements of the impact's end inside the last step.
 const FINAL_STEP_REFINEMENTS: usize = 3;
 
+/// Bisections for the end of an impact that met its work balance with the balls still
+/// approaching (e* near 0): 2⁻¹⁶ of a step, 1/(24·65,536) of the normal impulse.
+const SEPARATION_BISECTIONS: usize = 16;
+
 #[derive(Clone, Copy)]
 struct State<R> {
     slip_y: R,
@@ -378,6 +382,28 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
                     }
                     lambda = next_lambda;
                     result = candidate;
+                }
+                // The balls may not end the impact approaching: with e* near 0 the work
+                // balance is met within a rounding of the compression's end, where the
+                // step's actual map (table friction, a stick inside the step) can leave
+                // v_n a little below zero. Then the end is where v_n reaches zero
+                // (bisection on the partial steps; v_n ≥ 0 at λ = 1 in this step).
+                if result.1 .0.normal_velocity < zero {
+                    let (mut lo, mut hi) = (lambda, R::ONE);
+                    let mut separated = (zero, model.advance(&state, dp, stuck));
+                    for _ in 0..SEPARATION_BISECTIONS {
+                        let mid = R::of(0.5) * (lo + hi);
+                        let candidate = work_at(mid);
+                        if candidate.1 .0.normal_velocity >= zero {
+                            hi = mid;
+                            separated = candidate;
+                        } else {
+                            lo = mid;
+                        }
+                    }
+                    if separated.1 .0.normal_velocity >= zero {
+                        result = separated;
+                    }
                 }
                 let (last, last_stuck) = result.1;
                 state = last;
