@@ -27,6 +27,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use crate::cmd::{self, Failure, Result};
+use crate::format::thousands;
 use crate::{qemu, size};
 
 /// `cargo xtask docs` arguments.
@@ -209,19 +210,6 @@ fn json_of(line: &str) -> Result<serde_json::Value> {
     })
 }
 
-/// `1,234,567`.
-fn thousands(n: u64) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i).is_multiple_of(3) {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
-}
-
 /// The release image's sizes (built if missing).
 fn firmware_sizes() -> Result<size::Sizes> {
     let elf = qemu::elf_path();
@@ -388,12 +376,5 @@ mod tests {
     fn console_block_names_its_command() {
         let rendered = render("console echo 42", false).unwrap();
         assert_eq!(rendered, "\n```console\n$ echo 42\n42\n```\n");
-    }
-
-    #[test]
-    fn groups_thousands() {
-        assert_eq!(thousands(7), "7");
-        assert_eq!(thousands(46_136), "46,136");
-        assert_eq!(thousands(1_234_567), "1,234,567");
     }
 }

@@ -299,7 +299,7 @@ fn print_summary(runs: &[Run], build_secs: f64) {
         "{:<14} {:>12} {:>9} {:>8} {:>8} {:>7}  result",
         "target", "executions", "exec/s", "coverage", "corpus", "time s"
     );
-    let show = |n: Option<u64>| n.map_or_else(|| "-".to_string(), group_thousands);
+    let show = |n: Option<u64>| n.map_or_else(|| "-".to_string(), crate::format::thousands);
     for run in runs {
         println!(
             "{:<14} {:>12} {:>9} {:>8} {:>8} {:>7.0}  {}",
@@ -316,19 +316,6 @@ fn print_summary(runs: &[Run], build_secs: f64) {
             }
         );
     }
-}
-
-/// `1234567` as `1,234,567`.
-fn group_thousands(n: u64) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i).is_multiple_of(3) {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }
 
 #[cfg(test)]
@@ -380,7 +367,7 @@ mod tests {
         assert_eq!(run.rate, Some(31_569));
         assert_eq!(run.coverage, Some(1208));
         assert_eq!(run.corpus, Some(1078));
-        assert_eq!(group_thousands(1_925_760), "1,925,760");
-        assert_eq!(group_thousands(999), "999");
+        assert_eq!(crate::format::thousands(1_925_760), "1,925,760");
+        assert_eq!(crate::format::thousands(999), "999");
     }
 }

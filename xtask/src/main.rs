@@ -16,6 +16,7 @@
 mod bench;
 mod cmd;
 mod docs;
+mod format;
 mod fuzz;
 mod python;
 mod qemu;
