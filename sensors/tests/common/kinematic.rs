@@ -1,9 +1,11 @@
-//! The kinematic stroke model of `tests/synthetic_strokes.rs`, replicated draw for draw
-//! (the same seeds give the same strokes and the same samples), for the streaming
-//! estimator's tests (`tests/streaming.rs`, included by path). Additions, after the copy:
-//! samples up to any time (a stroke followed by its follow-through and a pause, for
-//! continuous streams), a second tip contact (a double hit), and the truth the tests
-//! compare with (contact sample, speed).
+//! The kinematic stroke model (minimum-jerk phases, tip contact and ringing, pendulum
+//! tilt, noise, bias; `tests/synthetic_strokes.rs` describes it), included by path by
+//! `tests/synthetic_strokes.rs`, `tests/streaming.rs` and the live-trace generator
+//! (`host-tests/src/live_trace.rs`). Beyond one stroke: samples up to any time (a
+//! stroke followed by its follow-through and a pause, for continuous streams), a second
+//! tip contact (a double hit), and the truth the tests compare with (contact sample,
+//! speed). `tests/glitch.rs` keeps its own accelerometer-only copy: it draws the noise
+//! without the gyro channel, so the same seeds give other samples there.
 #![allow(dead_code)]
 
 use cuesight_sensors::lsm6dsox::{ACCEL_MPS2_PER_LSB, GYRO_RADPS_PER_LSB};
