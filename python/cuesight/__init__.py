@@ -20,12 +20,11 @@ prints, and inputs are rounded to f32 as the CLI's are.
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
-from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
-
 import json
 import os
 from collections.abc import Mapping
+from dataclasses import asdict, dataclass
+from typing import Any, Dict, Iterable, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -50,7 +49,7 @@ __version__: str = _cuesight.__version__
 
 #: The core's models, cheapest first (``auto`` picks among the others); the names of
 #: ``cuesight collide --model``. ``model="reference"``, the host's f64
-#: first-principles solver (milliseconds a scene), is accepted besides.
+#: first-principles solver (about 0.3 ms a scene), is accepted besides.
 #: ``Collisions.model_used`` holds indices into this tuple.
 MODELS: Tuple[str, ...] = tuple(_cuesight.MODELS)
 
@@ -209,7 +208,7 @@ def collide(
     mu_s: object-ball/table static friction μ_s (default 0.3).
     radius, mass: ball radius R (m, default 0.028575) and mass M (kg, default 0.17).
     model: one of ``MODELS`` (default ``kim-grip``), or ``reference``: the f64
-        first-principles solver of ``collide --model reference`` (a few milliseconds).
+        first-principles solver of ``collide --model reference`` (about 0.3 ms).
     tolerance: with ``model="auto"``: the accepted error of the tier it picks, relative
         to U, in (0, 1] (default 1e-3); the result then has ``model_used`` and
         ``error_estimate``.
@@ -306,10 +305,11 @@ def collide_many(
     Each scalar input is a number (the same for every scene) or a 1-D array of n values;
     ``spin`` is ``(3,)`` or ``(n, 3)``, ``tip`` ``(2,)`` or ``(n, 2)``, ``roll`` a bool
     or n bools. Inputs are rounded to f32. ``model`` and ``tolerance`` are one for the
-    batch; ``model="reference"`` works too, at a few milliseconds a scene (with it, one
-    batch runs at a time in the process). ``errors="raise"`` (default): the first invalid scene raises ValueError
-    (``scene i: <the engine's message>``); ``errors="nan"``: it gets NaN, regime −1 and
-    ``valid`` false, and the others are predicted.
+    batch; ``model="reference"`` works too, at about 0.3 ms a scene (with it, one
+    batch runs at a time in the process). ``errors="raise"`` (default): the first
+    invalid scene raises ValueError (``scene i: <the engine's message>``);
+    ``errors="nan"``: it gets NaN, regime −1 and ``valid`` false, and the others are
+    predicted.
     """
     if errors not in ("raise", "nan"):
         raise ValueError(f"errors must be 'raise' or 'nan', not {errors!r}")
