@@ -112,15 +112,19 @@ pub(crate) struct Plan {
     /// |accel_scale| (m/s² per count) and its inverse.
     pub scale: f32,
     pub inv_scale: f32,
-    /// The raw accelerometer word is negated (axis pointing to the butt).
-    pub flip: bool,
-    /// |pitch_scale| (rad/s per count), its inverse, and the word's sign flip.
+    /// The raw accelerometer word's sign: −1 if it is negated (axis pointing to the
+    /// butt), else 1 (a multiplication, where a test and a negation take four
+    /// instructions).
+    pub accel_sign: i32,
+    /// |pitch_scale| (rad/s per count), its inverse, and the word's sign.
     pub pitch_scale: f32,
     pub inv_pitch_scale: f32,
-    pub pitch_flip: bool,
-    /// Block length (25 ms), and its inverse.
+    pub pitch_sign: i32,
+    /// Block length (25 ms), and its inverse; the position in a block where the guard
+    /// mark is taken (`block − guard`).
     pub block: u32,
     pub inv_block: f32,
+    pub guard_pos: u32,
     /// Blocks a rest needs (`min_rest`, at least 3) and blocks of a trusted rest.
     pub rest_blocks: u32,
     pub trusted_blocks: u32,
@@ -144,6 +148,14 @@ pub(crate) struct Plan {
     pub floor_sq: f32,
     /// A word at or beyond this magnitude is at the sensor's full scale.
     pub rail: i32,
+    /// `⌈−impact⌉`: a count `a` is below the impact threshold of a still cue,
+    /// `(a as f32) < −impact`, exactly when `a < knock` (see [`ceil`]).
+    pub knock: i32,
+    /// Counts `a` with `(a − normal) as u32 < normal_span` (`normal ≤ a < rail`, `normal`
+    /// the larger of `knock` and `1 − rail`) are neither at full scale nor below the
+    /// knock threshold: one comparison per sample for both tests.
+    pub normal: i32,
+    pub normal_span: u32,
     /// Slowest reported speed (m/s) and cue elevation at rest (rad).
     pub min_speed: f32,
     pub elevation: f32,
@@ -159,17 +171,22 @@ const fn samples(seconds: f32, rate: f32, at_least: u32) -> u32 {
     }
 }
 
-/// `x` finite and `> 0` (NaN-safe).
-const fn positive(x: f32) -> bool {
-    x > 0.0 && x < f32::INFINITY
+/// `⌈x⌉` for a finite `x` within the `i32` range: for every integer `a` (exact in f32,
+/// `|a| < 2²⁴`), `(a as f32) < x` exactly when `a < ⌈x⌉`, so a count is compared with
+/// an f32 threshold in one integer comparison.
+pub(crate) const fn ceil(x: f32) -> i32 {
+    let t = x as i32;
+    if (t as f32) < x {
+        t + 1
+    } else {
+        t
+    }
 }
 
-/// `x` finite and non-zero.
-const fn nonzero(x: f32) -> bool {
-    (x > 0.0 && x < f32::INFINITY) || (x < 0.0 && x > f32::NEG_INFINITY)
-}
+/// The smallest positive f32 (a subnormal): `x ≥ TINY` is `x > 0`.
+const TINY: f32 = f32::from_bits(1);
 
-/// `|x|` for a finite `x` (a `const` comparison).
+/// `|x|`, NaN for NaN (a `const` comparison).
 const fn magnitude(x: f32) -> f32 {
     if x < 0.0 {
         -x
@@ -183,52 +200,37 @@ impl Plan {
     pub const fn new(config: &StreamConfig) -> Result<Plan, StreamConfigError> {
         let s = &config.stroke;
         let rate = s.sample_rate_hz;
-        if !(rate >= 500.0 && rate <= MAX_STREAM_RATE_HZ) {
-            return Err(StreamConfigError::SampleRate);
-        }
-        if !positive(s.impact_threshold) {
-            return Err(StreamConfigError::Stroke(ConfigField::ImpactThreshold));
-        }
-        if !positive(s.onset_drop) {
-            return Err(StreamConfigError::Stroke(ConfigField::OnsetDrop));
-        }
-        if !positive(s.rest_noise_limit) {
-            return Err(StreamConfigError::Stroke(ConfigField::RestNoiseLimit));
-        }
-        if !positive(s.rest_level_tolerance) {
-            return Err(StreamConfigError::Stroke(ConfigField::RestLevelTolerance));
-        }
-        if !positive(s.motion_floor) {
-            return Err(StreamConfigError::Stroke(ConfigField::MotionFloor));
-        }
-        if !(positive(s.min_rest) && s.min_rest <= 10.0) {
-            return Err(StreamConfigError::Stroke(ConfigField::MinRest));
-        }
-        // NaN-safe: only a full scale strictly above the threshold is accepted.
-        let above = s.full_scale > s.impact_threshold;
-        if !above {
-            return Err(StreamConfigError::Stroke(ConfigField::FullScale));
-        }
-        if !(s.cue_elevation >= -1.2 && s.cue_elevation <= 1.2) {
-            return Err(StreamConfigError::Stroke(ConfigField::CueElevation));
-        }
-        if !nonzero(config.accel_scale) {
-            return Err(StreamConfigError::AccelScale);
-        }
-        if !nonzero(config.pitch_scale) {
-            return Err(StreamConfigError::PitchScale);
-        }
-        if !(config.trusted_rest >= s.min_rest && config.trusted_rest <= 60.0) {
-            return Err(StreamConfigError::TrustedRest);
-        }
-        if !(positive(config.max_stroke) && config.max_stroke <= 60.0) {
-            return Err(StreamConfigError::MaxStroke);
-        }
-        if !(positive(config.double_hit_window) && config.double_hit_window <= 1.0) {
-            return Err(StreamConfigError::DoubleHitWindow);
-        }
-        if !(config.min_speed >= 0.0 && config.min_speed < f32::INFINITY) {
-            return Err(StreamConfigError::MinSpeed);
+        use ConfigField as F;
+        use StreamConfigError as E;
+        // Every check is `low ≤ x ≤ high`, false for NaN, in the order the errors are
+        // reported: a table and one loop are a third of the code of fifteen tests. "> 0
+        // and finite" is `[TINY, MAX]`; "above the impact threshold" `≥` the next float.
+        let above_threshold = f32::from_bits(s.impact_threshold.to_bits().wrapping_add(1));
+        #[rustfmt::skip]
+        let checks: [(f32, f32, f32, StreamConfigError); 15] = [
+            (rate, 500.0, MAX_STREAM_RATE_HZ, E::SampleRate),
+            (s.impact_threshold, TINY, f32::MAX, E::Stroke(F::ImpactThreshold)),
+            (s.onset_drop, TINY, f32::MAX, E::Stroke(F::OnsetDrop)),
+            (s.rest_noise_limit, TINY, f32::MAX, E::Stroke(F::RestNoiseLimit)),
+            (s.rest_level_tolerance, TINY, f32::MAX, E::Stroke(F::RestLevelTolerance)),
+            (s.motion_floor, TINY, f32::MAX, E::Stroke(F::MotionFloor)),
+            (s.min_rest, TINY, 10.0, E::Stroke(F::MinRest)),
+            (s.full_scale, above_threshold, f32::INFINITY, E::Stroke(F::FullScale)),
+            (s.cue_elevation, -1.2, 1.2, E::Stroke(F::CueElevation)),
+            (magnitude(config.accel_scale), TINY, f32::MAX, E::AccelScale),
+            (magnitude(config.pitch_scale), TINY, f32::MAX, E::PitchScale),
+            (config.trusted_rest, s.min_rest, 60.0, E::TrustedRest),
+            (config.max_stroke, TINY, 60.0, E::MaxStroke),
+            (config.double_hit_window, TINY, 1.0, E::DoubleHitWindow),
+            (config.min_speed, 0.0, f32::MAX, E::MinSpeed),
+        ];
+        let mut i = 0;
+        while i < checks.len() {
+            let (x, low, high, error) = checks[i];
+            if !(x >= low && x <= high) {
+                return Err(error);
+            }
+            i += 1;
         }
         let scale = magnitude(config.accel_scale);
         let pitch_scale = magnitude(config.pitch_scale);
@@ -263,16 +265,19 @@ impl Plan {
                 }
             }
         };
+        let knock = ceil(-(s.impact_threshold / scale));
+        let normal = if knock > 1 - rail { knock } else { 1 - rail };
         Ok(Plan {
             dt: 1.0 / rate,
             scale,
             inv_scale: 1.0 / scale,
-            flip: config.accel_scale < 0.0,
+            accel_sign: if config.accel_scale < 0.0 { -1 } else { 1 },
             pitch_scale,
             inv_pitch_scale: 1.0 / pitch_scale,
-            pitch_flip: config.pitch_scale < 0.0,
+            pitch_sign: if config.pitch_scale < 0.0 { -1 } else { 1 },
             block,
             inv_block: 1.0 / block as f32,
+            guard_pos: block - guard,
             rest_blocks,
             trusted_blocks,
             bucket: samples(1.0, rate, 1).div_ceil(block),
@@ -288,6 +293,9 @@ impl Plan {
             noise_limit_sq: noise_limit * noise_limit,
             floor_sq: motion_floor * motion_floor,
             rail,
+            knock,
+            normal,
+            normal_span: (rail - normal) as u32,
             min_speed: config.min_speed,
             elevation: s.cue_elevation,
         })

@@ -1,10 +1,9 @@
 //! Integration from the rest end, impact onset and the stroke report (steps 4–6 of the
 //! module docs).
 
-use super::{StreamEvent, StreamFault, StreamStroke, StreamingEstimator};
+use super::config::ceil;
+use super::{at_or_after, StreamEvent, StreamFault, StreamStroke, StreamingEstimator};
 use crate::lsm6dsox::STANDARD_GRAVITY;
-
-use super::rest::Run;
 
 /// Largest speed (m/s) at which a later, shorter run may replace the integration's
 /// origin: a pause at the back integrates to ~0 (0.005 m/s of noise and bias error at
@@ -18,8 +17,8 @@ pub(super) struct Stroke {
     /// A rest has ended and no impact has come yet.
     pub active: bool,
     /// The rest window `[rest_start, rest_end)` and the run's length in blocks.
-    rest_start: u64,
-    pub rest_end: u64,
+    rest_start: u32,
+    pub rest_end: u32,
     pub rest_blocks: u32,
     /// Rest mean, its nearest integer and the difference; the pitch-rate rest mean.
     bias: f32,
@@ -28,8 +27,10 @@ pub(super) struct Stroke {
     gyro_bias: f32,
     /// Rest noise (m/s²).
     noise: f32,
-    /// A sample below this is an impact: `bias − impact_threshold`.
-    pub limit: f32,
+    /// A sample below `bias − impact_threshold` is an impact: a count `a` is when
+    /// `a < limit`, this being `⌈bias − impact_threshold⌉` ([`ceil`]); between strokes
+    /// `plan.knock`, the threshold for a cue at rest (one comparison per sample).
+    pub limit: i32,
     /// `Σ a` over `[rest_end, k)` (exact) and `fold = P(k)`, `k` the last block end.
     sum: i64,
     fold: i32,
@@ -42,13 +43,14 @@ pub(super) struct Stroke {
     quad: f32,
     quad_block: f32,
     /// First sample integrated per sample (after the rest end's delay).
-    live_from: u64,
+    live_from: u32,
     /// A full-scale sample after the rest end.
-    pub first_saturated: Option<u64>,
+    pub first_saturated: Option<u32>,
 }
 
 impl Stroke {
-    pub const fn new() -> Self {
+    /// No stroke; `knock` is the plan's.
+    pub const fn new(knock: i32) -> Self {
         Self {
             active: false,
             rest_start: 0,
@@ -59,7 +61,7 @@ impl Stroke {
             bias_fraction: 0.0,
             gyro_bias: 0.0,
             noise: 0.0,
-            limit: 0.0,
+            limit: knock,
             sum: 0,
             fold: 0,
             tilt: 0.0,
@@ -71,73 +73,97 @@ impl Stroke {
             first_saturated: None,
         }
     }
+
+    /// The stroke is over (impact, fault, too long): between strokes.
+    pub fn end(&mut self, plan: &super::Plan) {
+        self.active = false;
+        self.limit = plan.knock;
+    }
 }
 
 impl StreamingEstimator {
-    /// Start integrating from `rest_end` (prefix sums `p`, `c` there) at sample `n`:
-    /// step 4's bias over the rest window, and the sums over `[rest_end, n]`, which the
-    /// motion test saw only after the fact, from the prefix sums.
-    pub(super) fn anchor(&mut self, n: u64, rest_end: u64, p: i32, c: i32, run: &Run) {
-        let (rest_start, p_start, c_start) = run.window_start();
-        let count = (rest_end - rest_start) as f32;
+    /// Start integrating from `rest_end` (prefix sums `p`, `c` there) at sample `n`,
+    /// the run of `blocks` that ends there being still in `self.run`: step 4's bias over
+    /// the rest window, and the sums over `[rest_end, n]`, which the motion test saw
+    /// only after the fact, from the prefix sums.
+    pub(super) fn anchor(&mut self, n: u32, rest_end: u32, p: i32, c: i32, blocks: u32) {
+        let (rest_start, p_start, c_start) = self.run.window_start();
+        let count = rest_end.wrapping_sub(rest_start) as f32;
         let bias = p.wrapping_sub(p_start) as f32 / count;
         let gyro_bias = c.wrapping_sub(c_start) as f32 / count;
         let bias_round = if bias >= 0.0 { bias + 0.5 } else { bias - 0.5 } as i32;
-        let span = (n + 1 - rest_end) as f32;
+        let span = n.wrapping_add(1).wrapping_sub(rest_end) as f32;
         // Elevation change over the span: exact. Its mid-sample sums over the span are
         // taken as for a change growing linearly from 0 (the span is the end of the rest
         // and the first W samples of motion, 12 ms at most; `docs/sensors.md` §11).
         let tilt = self.c.wrapping_sub(c) as f32 - gyro_bias * span;
-        self.stroke = Stroke {
-            active: true,
-            rest_start,
-            rest_end,
-            rest_blocks: run.blocks,
-            bias,
-            bias_round,
-            bias_fraction: bias - bias_round as f32,
-            gyro_bias,
-            noise: cuesight::math::sqrt(run.variance) * self.plan.scale,
-            limit: bias - self.plan.impact,
-            sum: i64::from(self.p.wrapping_sub(p)),
-            fold: self.p,
-            tilt,
-            lin: 0.5 * tilt * span,
-            lin_block: 0.0,
-            quad: tilt * tilt * span / 3.0,
-            quad_block: 0.0,
-            live_from: n + 1,
-            first_saturated: self.last_saturated.filter(|&s| s >= rest_end),
+        let noise = cuesight::math::sqrt(self.run.variance) * self.plan.scale;
+        let limit = ceil(bias - self.plan.impact);
+        let first_saturated = self.last_saturated.filter(|&s| at_or_after(s, rest_end));
+        // Field by field: a struct literal is built on the stack and copied.
+        let s = &mut self.stroke;
+        s.active = true;
+        s.rest_start = rest_start;
+        s.rest_end = rest_end;
+        s.rest_blocks = blocks;
+        s.bias = bias;
+        s.bias_round = bias_round;
+        s.bias_fraction = bias - bias_round as f32;
+        s.gyro_bias = gyro_bias;
+        s.noise = noise;
+        s.limit = limit;
+        s.sum = i64::from(self.p.wrapping_sub(p));
+        s.fold = self.p;
+        s.tilt = tilt;
+        s.lin = 0.5 * tilt * span;
+        s.lin_block = 0.0;
+        s.quad = tilt * tilt * span / 3.0;
+        s.quad_block = 0.0;
+        s.live_from = n.wrapping_add(1);
+        s.first_saturated = first_saturated;
+    }
+
+    /// `Σ (a − bias)` over the first `count` samples from the rest end, `p` being the
+    /// acceleration prefix sum after them: the exact integer sum less `count` times
+    /// the rounded bias, then the bias's fraction in f32.
+    fn counts(&self, count: u32, p: i32) -> f32 {
+        let s = &self.stroke;
+        let total =
+            s.sum + i64::from(p.wrapping_sub(s.fold)) - i64::from(count) * i64::from(s.bias_round);
+        // The same value as `total as f32`, without the library call when it fits.
+        let total = match i32::try_from(total) {
+            Ok(t) => t as f32,
+            Err(_) => total as f32,
         };
-        if self.gravity.is_none() {
-            let (sin, cos) = cuesight::math::sin_cos(self.plan.elevation);
-            self.gravity = Some((STANDARD_GRAVITY * cos, STANDARD_GRAVITY * sin));
-        }
+        total - count as f32 * s.bias_fraction
+    }
+
+    /// Cue speed (m/s) from the integrated counts and the tilt sums `Σ A`, `Σ A²`.
+    fn speed(&self, counts: f32, lin: f32, quad: f32) -> f32 {
+        let plan = &self.plan;
+        let (g_cos, g_sin) = self.gravity.unwrap_or((STANDARD_GRAVITY, 0.0));
+        let angle = plan.pitch_scale * plan.dt; // rad per count·sample
+        let correction = plan.dt * angle * (g_cos * lin - 0.5 * g_sin * angle * quad);
+        counts * plan.scale * plan.dt + correction
     }
 
     /// The integrated cue speed at `index` (acceleration prefix sum `p` there) is below
     /// [`REST_SPEED`]. The tilt correction is taken through the current sample (the
     /// motion test fires `W + guard` samples after `index`; the cue has barely moved).
-    pub(super) fn at_rest(&self, index: u64, p: i32) -> bool {
+    pub(super) fn at_rest(&self, index: u32, p: i32) -> bool {
         let s = &self.stroke;
-        if index < s.live_from {
+        if !at_or_after(index, s.live_from) {
             return false;
         }
-        let count = index - s.rest_end;
-        let total =
-            s.sum + i64::from(p.wrapping_sub(s.fold)) - count as i64 * i64::from(s.bias_round);
-        let counts = total as f32 - count as f32 * s.bias_fraction;
-        let (g_cos, g_sin) = self.gravity.unwrap_or((STANDARD_GRAVITY, 0.0));
-        let angle = self.plan.pitch_scale * self.plan.dt;
-        let (lin, quad) = (s.lin + s.lin_block, s.quad + s.quad_block);
-        let correction = self.plan.dt * angle * (g_cos * lin - 0.5 * g_sin * angle * quad);
-        let speed = counts * self.plan.scale * self.plan.dt + correction;
+        let counts = self.counts(index.wrapping_sub(s.rest_end), p);
+        let speed = self.speed(counts, s.lin + s.lin_block, s.quad + s.quad_block);
         cuesight::math::abs(speed) < REST_SPEED
     }
 
     /// Per-sample tilt sums (step 5, gyro-aided part): `A = T + q/2` is the elevation
     /// change at mid-sample, `T` before it, `q` the bias-free pitch rate.
-    pub(super) fn integrate(&mut self, n: u64, p: i32) {
+    #[inline(always)]
+    pub(super) fn integrate(&mut self, n: u32, p: i32) {
         let s = &mut self.stroke;
         self.recent_tilt[n as usize & 7] = s.tilt;
         let q = p as f32 - s.gyro_bias;
@@ -149,7 +175,7 @@ impl StreamingEstimator {
 
     /// Block end: fold the block's sums into the totals (f32 sums stay block-sized);
     /// drop an integration older than `max_stroke`.
-    pub(super) fn fold(&mut self, n: u64) {
+    pub(super) fn fold(&mut self, n: u32) {
         let s = &mut self.stroke;
         if !s.active {
             return;
@@ -160,62 +186,110 @@ impl StreamingEstimator {
         s.quad += s.quad_block;
         s.lin_block = 0.0;
         s.quad_block = 0.0;
-        if n + 1 - s.rest_end > u64::from(self.plan.max_stroke) {
-            s.active = false;
+        if n.wrapping_add(1).wrapping_sub(s.rest_end) > self.plan.max_stroke {
+            s.end(&self.plan);
         }
     }
 
-    /// Sample `n` is below the impact threshold. Crossings closer than `gap` are one
-    /// impact; a new impact ends the stroke, or is a double hit or a knock.
-    pub(super) fn crossing(&mut self, n: u64) -> Option<StreamEvent> {
+    /// Sample `n` is below the impact threshold: `true` if it starts a new impact
+    /// (crossings closer than `gap` are one impact, its ringing).
+    #[inline(always)]
+    pub(super) fn new_crossing(&mut self, n: u32) -> bool {
         let new = self
             .last_crossing
-            .is_none_or(|last| n - last > u64::from(self.plan.gap));
+            .is_none_or(|last| n.wrapping_sub(last) > self.plan.gap);
         self.last_crossing = Some(n);
-        if !new {
-            return None;
-        }
-        if self.stroke.active {
-            return Some(self.impact(n));
-        }
-        let fault = match self.last_impact {
-            Some((first, until)) if n <= until => StreamFault::DoubleHit { first, second: n },
-            _ => StreamFault::NotAtRest { index: n },
+        new
+    }
+
+    /// The end of a step whose sample `n` starts a new impact: it ends the stroke, or
+    /// is a double hit or a knock. The block end comes after the report's figures, the
+    /// event last (built in the caller's return slot).
+    #[inline(never)]
+    pub(super) fn new_impact(&mut self, n: u32) -> Option<StreamEvent> {
+        let r = if self.stroke.active {
+            self.impact(n)
+        } else {
+            let index = self.unwrap_index(n);
+            match self.last_impact {
+                Some((first, until)) if at_or_after(until, n) => Report {
+                    kind: Kind::DoubleHit,
+                    index: first,
+                    other: index,
+                    ..Report::default()
+                },
+                _ => Report {
+                    kind: Kind::NotAtRest,
+                    index,
+                    ..Report::default()
+                },
+            }
         };
-        Some(StreamEvent::Fault(fault))
+        if self.block.pos == self.plan.block {
+            self.end_block(n);
+        }
+        Some(match r.kind {
+            Kind::Stroke => StreamEvent::Stroke(StreamStroke {
+                cue_speed: r.speed,
+                impact_index: r.index,
+                rest_start: r.other,
+                rest_end: r.rest_end,
+                bias: r.bias,
+                rest_noise: r.noise,
+                stroke_duration: r.duration,
+                tilt_at_impact: r.tilt,
+                accel_at_impact: r.accel,
+            }),
+            Kind::Saturated => StreamEvent::Fault(StreamFault::Saturated {
+                index: r.other,
+                impact: r.index,
+            }),
+            Kind::NotForward => StreamEvent::Fault(StreamFault::NotForward {
+                impact: r.index,
+                speed: r.speed,
+            }),
+            Kind::DoubleHit => StreamEvent::Fault(StreamFault::DoubleHit {
+                first: r.index,
+                second: r.other,
+            }),
+            Kind::NotAtRest => StreamEvent::Fault(StreamFault::NotAtRest { index: r.index }),
+        })
     }
 
     /// Step 6 at the crossing sample `c`: onset, speed, report.
-    fn impact(&mut self, c: u64) -> StreamEvent {
-        let s = self.stroke;
-        self.stroke.active = false;
-        let plan = self.plan;
+    #[inline(always)]
+    fn impact(&mut self, c: u32) -> Report {
+        self.stroke.end(&self.plan);
+        let s = &self.stroke;
+        let plan = &self.plan;
         let rest_end = s.rest_end;
+        // Samples from the rest end to the crossing (the stroke is at most `max_stroke`).
+        let back = c.wrapping_sub(rest_end);
         // Pre-impact level: mean of [c − 12, c − 4), clipped to the stroke.
-        let pre_start = c.saturating_sub(12).max(rest_end);
-        let pre_end = c.saturating_sub(4).max(rest_end);
-        let pre_level = if pre_end > pre_start {
+        let (pre_start, pre_end) = (c.wrapping_sub(back.min(12)), c.wrapping_sub(back.min(4)));
+        let pre_level = if back > 4 {
             self.prefix(pre_end).wrapping_sub(self.prefix(pre_start)) as f32
-                / (pre_end - pre_start) as f32
+                / (back.min(12) - 4) as f32
         } else {
             s.bias
         };
-        let mut onset = c;
-        while onset > rest_end
-            && onset + 4 > c
-            && self.sample(onset - 1) < pre_level - plan.onset_drop
+        // The onset: back from the crossing (at most 4 samples, not past the rest end)
+        // while the sample before lies `onset_drop` below the pre-impact level.
+        let mut before = 0; // samples the onset lies before the crossing
+        while before < back
+            && before < 4
+            && self.sample(c.wrapping_sub(before + 1)) < pre_level - plan.onset_drop
         {
-            onset -= 1;
+            before += 1;
         }
+        let onset = c.wrapping_sub(before);
         // Σ (a − bias) over [rest_end, onset): exact integers, then the bias's fraction.
-        let count = onset - rest_end;
-        let total = s.sum + i64::from(self.prefix(onset).wrapping_sub(s.fold))
-            - count as i64 * i64::from(s.bias_round);
-        let counts = total as f32 - count as f32 * s.bias_fraction;
+        let count = back - before;
+        let counts = self.counts(count, self.prefix(onset));
         // Tilt sums over [rest_end, onset): remove the samples from the onset on.
         let (mut lin, mut quad) = (s.lin + s.lin_block, s.quad + s.quad_block);
         let tilt;
-        if onset >= s.live_from {
+        if at_or_after(onset, s.live_from) {
             let mut after = s.tilt;
             let mut i = c;
             loop {
@@ -227,23 +301,36 @@ impl StreamingEstimator {
                 if i == onset {
                     break;
                 }
-                i -= 1;
+                i = i.wrapping_sub(1);
             }
             tilt = after;
         } else {
             // An impact within the rest end's delay: no tilt correction.
             (lin, quad, tilt) = (0.0, 0.0, 0.0);
         }
-        let (g_cos, g_sin) = self.gravity.unwrap_or((STANDARD_GRAVITY, 0.0));
-        let angle = plan.pitch_scale * plan.dt; // rad per count·sample
-        let correction = plan.dt * angle * (g_cos * lin - 0.5 * g_sin * angle * quad);
-        let speed = counts * plan.scale * plan.dt + correction;
-        self.last_impact = Some((onset, c + u64::from(plan.double_hit)));
-        if let Some(index) = s.first_saturated.filter(|&i| i < onset) {
-            return StreamEvent::Fault(StreamFault::Saturated {
-                index,
-                impact: onset,
-            });
+        let speed = self.speed(counts, lin, quad);
+        let angle = plan.pitch_scale * plan.dt;
+        let onset_index = self.unwrap_index(onset);
+        let first_saturated = s.first_saturated.filter(|&i| !at_or_after(i, onset));
+        let report = Report {
+            kind: Kind::Stroke,
+            speed,
+            index: onset_index,
+            other: self.unwrap_index(s.rest_start),
+            rest_end: self.unwrap_index(rest_end),
+            bias: s.bias * plan.scale,
+            noise: s.noise,
+            duration: count as f32 * plan.dt,
+            tilt: tilt * angle,
+            accel: (pre_level - s.bias) * plan.scale,
+        };
+        self.last_impact = Some((onset_index, c.wrapping_add(plan.double_hit)));
+        if let Some(index) = first_saturated {
+            return Report {
+                kind: Kind::Saturated,
+                other: self.unwrap_index(index),
+                ..report
+            };
         }
         if !(speed > plan.min_speed && cuesight::math::is_finite(speed)) {
             let speed = if cuesight::math::is_finite(speed) {
@@ -251,21 +338,40 @@ impl StreamingEstimator {
             } else {
                 0.0
             };
-            return StreamEvent::Fault(StreamFault::NotForward {
-                impact: onset,
+            return Report {
+                kind: Kind::NotForward,
                 speed,
-            });
+                ..report
+            };
         }
-        StreamEvent::Stroke(StreamStroke {
-            cue_speed: speed,
-            impact_index: onset,
-            rest_start: s.rest_start,
-            rest_end,
-            bias: s.bias * plan.scale,
-            rest_noise: s.noise,
-            stroke_duration: count as f32 * plan.dt,
-            tilt_at_impact: tilt * angle,
-            accel_at_impact: (pre_level - s.bias) * plan.scale,
-        })
+        report
     }
+}
+
+/// What an impact reports, as scalars (see [`StreamingEstimator::new_impact`]).
+#[derive(Clone, Copy, Default)]
+struct Report {
+    kind: Kind,
+    /// The onset (stroke, saturated, not forward), the first impact (double hit), the
+    /// crossing (not at rest).
+    index: u64,
+    /// The rest start (stroke), the saturated sample, the second crossing (double hit).
+    other: u64,
+    rest_end: u64,
+    speed: f32,
+    bias: f32,
+    noise: f32,
+    duration: f32,
+    tilt: f32,
+    accel: f32,
+}
+
+#[derive(Clone, Copy, Default)]
+enum Kind {
+    Stroke,
+    Saturated,
+    NotForward,
+    DoubleHit,
+    #[default]
+    NotAtRest,
 }

@@ -2,12 +2,12 @@
 //!
 //! The windowed estimator ([`crate::stroke`]) needs the whole stroke in a buffer (3.6 s,
 //! 48 kB at 6.66 kHz). This one keeps block statistics, prefix sums and a 128-sample
-//! ring of them ([`StreamingEstimator`] is 1,496 bytes), and reports each stroke on the
+//! ring of them ([`StreamingEstimator`] is 1,464 bytes), and reports each stroke on the
 //! sample that crosses the impact threshold. The steps are the windowed estimator's
 //! (`stroke.rs` module docs, `docs/sensors.md` §4), rearranged so that each is decided
 //! when its last sample arrives:
 //!
-//! 1. **Rest** ([`rest`]): 25 ms blocks; a run of blocks whose standard deviation is
+//! 1. **Rest** (`rest.rs`): 25 ms blocks; a run of blocks whose standard deviation is
 //!    at most `rest_noise_limit` and whose means lie within `rest_level_tolerance` of
 //!    the run's first block, holding no impact-sized or full-scale sample. Its level
 //!    and noise come from the blocks after the first (the last 1–2 s of them).
@@ -25,7 +25,7 @@
 //!    0.55 s of a 1.5 s backswing pass the rest tests at near-zero speed), not rests.
 //! 4. **Bias** = the mean of the rest window (offset + gravity along the cue); the
 //!    gyro's pitch-rate bias likewise.
-//! 5. **Integration** ([`integral`]) from the rest end: `V = Σ (a_i − bias) Δt`, exact
+//! 5. **Integration** (`integral.rs`) from the rest end: `V = Σ (a_i − bias) Δt`, exact
 //!    integer sums of the raw words, the bias subtracted once at the impact; with a
 //!    pitch rate, `g (cos θ₀ Δθ − sin θ₀ Δθ²/2)` added back per sample as in
 //!    [`crate::estimate_with_pitch`].
@@ -40,11 +40,30 @@
 //! divisions, and the impact a loop of at most 5 steps. Indices into the ring are
 //! `k & 127` into a 128-entry array: no panic path. Nothing is NaN: a non-finite input
 //! is a [`StreamFault::NotFinite`] and is not used.
+//!
+//! **Cost on the device** (`docs/sensors.md` §11, `cargo xtask bench --stream-only`):
+//! the per-sample path is one function with no call; block ends, rest ends and
+//! crossings of the impact threshold are `#[inline(never)]` functions, so the common
+//! sample saves and restores few registers. No 64-bit arithmetic per sample, no
+//! `core::fmt`.
+//!
+//! **Sample indices** are `u32` inside (a `u64` costs two instructions per operation
+//! and a library call per conversion to f32 on the Cortex-M4F): they wrap after 2³²
+//! samples, 7.4 days of continuous sampling at 6.66 kHz. Every stored index is compared
+//! through a wrapping difference with the current one, over a span the plan bounds (a
+//! stroke at most `max_stroke` ≤ 60 s, a rest window at most 2 s and a block, 12 ms of
+//! delay), so a wrap changes nothing; markers that could grow older than that (the last
+//! crossing, impact and saturated sample) are dropped at a block end once they cannot
+//! matter. The indices reported are `u64`: the index of the current block's first
+//! sample is kept as a `u64` (one 64-bit add per block end), and a stored `u32` index is
+//! widened by its signed distance from that block start.
 
 mod config;
 mod event;
 mod integral;
 mod rest;
+#[cfg(test)]
+mod tests;
 
 pub use config::{StreamConfig, StreamConfigError, MAX_STREAM_RATE_HZ};
 pub use event::{StreamEvent, StreamFault, StreamStroke};
@@ -61,8 +80,9 @@ const MASK: usize = RING - 1;
 #[derive(Clone, Debug)]
 pub struct StreamingEstimator {
     plan: Plan,
-    /// Samples pushed: the index of the next one.
-    index: u64,
+    /// Index of the current block's first sample, unwrapped (`block.start` is its low
+    /// 32 bits): every reported index is this plus a signed `u32` distance.
+    block_base: u64,
     /// Prefix sums of the acceleration and pitch-rate counts through the last sample
     /// (wrapping: only differences over a bounded span are used).
     p: i32,
@@ -75,15 +95,18 @@ pub struct StreamingEstimator {
     stroke: Stroke,
     /// Elevation change from the rest (counts·samples) before each of the last 8 samples.
     recent_tilt: [f32; 8],
-    /// Latest sample below the impact threshold.
-    last_crossing: Option<u64>,
-    /// The last reported impact's onset, and the last sample a double hit may start.
-    last_impact: Option<(u64, u64)>,
-    /// Latest sample at full scale.
-    last_saturated: Option<u64>,
+    /// Latest sample below the impact threshold (dropped at a block end once more than
+    /// `gap` old).
+    last_crossing: Option<u32>,
+    /// The last reported impact's onset, and the last sample a double hit may start
+    /// (dropped at a block end after that).
+    last_impact: Option<(u64, u32)>,
+    /// Latest sample at full scale (dropped at a block end once too old for any rest
+    /// end to come).
+    last_saturated: Option<u32>,
     /// The previous sample was not finite.
     not_finite: bool,
-    /// `(g cos θ₀, g sin θ₀)`, computed at the first rest (m/s²).
+    /// `(g cos θ₀, g sin θ₀)` (m/s²), computed at the first block end.
     gravity: Option<(f32, f32)>,
 }
 
@@ -99,13 +122,13 @@ impl StreamingEstimator {
     const fn from_plan(plan: Plan) -> Self {
         Self {
             plan,
-            index: 0,
+            block_base: 0,
             p: 0,
             c: 0,
             ring: [[0; 2]; RING],
             block: Block::new(),
             run: Run::new(),
-            stroke: Stroke::new(),
+            stroke: Stroke::new(plan.knock),
             recent_tilt: [0.0; 8],
             last_crossing: None,
             last_impact: None,
@@ -119,11 +142,9 @@ impl StreamingEstimator {
     /// estimate, the pitch-rate axis (`None`: no gyro, a zero rate). The words are
     /// scaled by the config's `accel_scale` and `pitch_scale`.
     pub fn push_raw(&mut self, accel: i16, pitch: Option<i16>) -> Option<StreamEvent> {
-        let a = i32::from(accel);
-        let a = if self.plan.flip { -a } else { a };
+        let a = i32::from(accel) * self.plan.accel_sign;
         let p = match pitch {
-            Some(w) if self.plan.pitch_flip => -i32::from(w),
-            Some(w) => i32::from(w),
+            Some(w) => i32::from(w) * self.plan.pitch_sign,
             None => 0,
         };
         self.step(a, p, true)
@@ -151,8 +172,8 @@ impl StreamingEstimator {
             .stroke
             .active
             .then_some(StreamEvent::Fault(StreamFault::EndedMidStroke {
-                rest_end: self.stroke.rest_end,
-                samples: self.index,
+                rest_end: self.unwrap_index(self.stroke.rest_end),
+                samples: self.samples(),
             }));
         *self = Self::from_plan(self.plan);
         event
@@ -160,7 +181,7 @@ impl StreamingEstimator {
 
     /// Samples pushed so far (the index the next one gets).
     pub const fn samples(&self) -> u64 {
-        self.index
+        self.block_base + self.block.pos as u64
     }
 
     /// `true` while a stroke is being integrated (a rest has ended, no impact yet).
@@ -168,28 +189,96 @@ impl StreamingEstimator {
         self.stroke.active
     }
 
+    /// Where the stroke being integrated starts: the end of the rest its speed is
+    /// integrated from (`None` between strokes). It moves when a later rest replaces
+    /// that one (step 3 of the module docs).
+    pub fn rest_end(&self) -> Option<u64> {
+        self.stroke
+            .active
+            .then(|| self.unwrap_index(self.stroke.rest_end))
+    }
+
+    /// The unwrapped index of sample `k` (within 2³¹ samples of the current block).
+    fn unwrap_index(&self, k: u32) -> u64 {
+        let distance = k.wrapping_sub(self.block.start) as i32;
+        self.block_base.wrapping_add_signed(i64::from(distance))
+    }
+
     /// The per-sample step on counts (forward positive); `finite` is false for a
     /// non-finite SI input (then `a = p = 0`).
+    ///
+    /// The sample ends in one of the `#[inline(never)]` functions when something
+    /// happens (an impact, a non-finite input); they build the event last, directly in
+    /// the caller's return slot (an event returned from a call and then moved is copied
+    /// twice, 48 bytes through `memcpy` each time, on the Cortex-M4F).
     fn step(&mut self, a: i32, p: i32, finite: bool) -> Option<StreamEvent> {
-        let n = self.index;
-        self.index = n + 1;
-        let mut event = None;
-        if finite {
+        let n = self.block.start.wrapping_add(self.block.pos);
+        let report_non_finite = if finite {
             self.not_finite = false;
+            false
         } else {
-            if !self.not_finite {
-                event = Some(StreamEvent::Fault(StreamFault::NotFinite { index: n }));
-            }
-            self.not_finite = true;
-            self.stroke.active = false;
-            self.run.abandon();
-            self.block.bad = true;
-        }
+            self.non_finite()
+        };
         self.p = self.p.wrapping_add(a);
         self.c = self.c.wrapping_add(p);
-        self.ring[(n + 1) as usize & MASK] = [self.p, self.c];
-        let af = a as f32;
-        self.block_sample(af);
+        let next = n.wrapping_add(1);
+        self.ring[next as usize & MASK] = [self.p, self.c];
+        // The sum of the last W samples, `P(n+1) − P(n+1−W)`: the block's W-sum
+        // extremes and the motion test.
+        let w_sum = self
+            .p
+            .wrapping_sub(self.prefix(next.wrapping_sub(self.plan.window)));
+        self.block_sample(a, w_sum);
+        if (a.wrapping_sub(self.plan.normal)) as u32 >= self.plan.normal_span {
+            self.extreme(a, n);
+        }
+        // Integrate before the motion test: a rest end found now already covers `n`.
+        if self.stroke.active {
+            self.integrate(n, p);
+        }
+        if self.run.armed {
+            self.motion_test(n, w_sum);
+        }
+        // The impact threshold: `stroke.limit` is `plan.knock` between strokes.
+        if finite && a < self.stroke.limit && self.new_crossing(n) {
+            return self.new_impact(n);
+        }
+        if report_non_finite {
+            return self.report_non_finite(n);
+        }
+        if self.block.pos == self.plan.block {
+            self.end_block(n);
+        }
+        None
+    }
+
+    /// A non-finite input: the rest and any stroke are dropped. `true` for the first of
+    /// a run of them (reported).
+    #[inline(never)]
+    fn non_finite(&mut self) -> bool {
+        let first = !self.not_finite;
+        self.not_finite = true;
+        self.stroke.end(&self.plan);
+        self.run.abandon();
+        self.block.bad = true;
+        first
+    }
+
+    /// The end of a step whose sample `n` is the first of a run of non-finite ones.
+    #[inline(never)]
+    fn report_non_finite(&mut self, n: u32) -> Option<StreamEvent> {
+        if self.block.pos == self.plan.block {
+            self.end_block(n);
+        }
+        Some(StreamEvent::Fault(StreamFault::NotFinite {
+            index: self.unwrap_index(n),
+        }))
+    }
+
+    /// Sample `n`, `a` counts, is at the sensor's full scale or below the impact
+    /// threshold of a cue at rest (a knock): not a rest block.
+    #[inline(never)]
+    fn extreme(&mut self, a: i32, n: u32) {
         if a >= self.plan.rail || a <= -self.plan.rail {
             self.block.bad = true;
             self.last_saturated = Some(n);
@@ -197,41 +286,25 @@ impl StreamingEstimator {
                 self.stroke.first_saturated = Some(n);
             }
         }
-        if af < -self.plan.impact {
-            self.block.bad = true; // a knock: no rest block
+        if a < self.plan.knock {
+            self.block.bad = true;
         }
-        // Integrate before the motion test: a rest end found now already covers `n`.
-        if self.stroke.active {
-            self.integrate(n, p);
-        }
-        if self.run.armed {
-            self.motion_test(n);
-        }
-        let limit = if self.stroke.active {
-            self.stroke.limit
-        } else {
-            -self.plan.impact
-        };
-        if finite && af < limit {
-            if let Some(e) = self.crossing(n) {
-                event = Some(e);
-            }
-        }
-        if self.block.pos == self.plan.block {
-            self.end_block(n);
-        }
-        event
     }
 
     /// Prefix sum of the acceleration before sample `k` (`k` within the ring's reach).
-    fn prefix(&self, k: u64) -> i32 {
+    fn prefix(&self, k: u32) -> i32 {
         self.ring[k as usize & MASK][0]
     }
 
     /// Sample `i` in counts, from the prefix ring.
-    fn sample(&self, i: u64) -> f32 {
-        self.prefix(i + 1).wrapping_sub(self.prefix(i)) as f32
+    fn sample(&self, i: u32) -> f32 {
+        self.prefix(i.wrapping_add(1)).wrapping_sub(self.prefix(i)) as f32
     }
+}
+
+/// `a` is at or after `b`, for two sample indices less than 2³¹ apart.
+fn at_or_after(a: u32, b: u32) -> bool {
+    a.wrapping_sub(b) as i32 >= 0
 }
 
 /// Nearest integer (ties away from zero), clipped to the i16 range.
