@@ -110,8 +110,9 @@ pub fn bench_stream_timed(
 
 /// Every sample of `stream` through `push`, in order, with a `stream-mark <index>
 /// <what>` line where something observable happened: `rest-end` (a stroke starts
-/// integrating), `stroke-end` (it stops without an event: `max_stroke`), or the event
-/// (`stroke`, `double-hit`, `not-at-rest`, `not-forward`, `saturated`, `not-finite`).
+/// integrating), `re-anchor` (a later rest replaces its origin), `stroke-end` (it stops
+/// without an event: `max_stroke`), or the event (`stroke`, `double-hit`,
+/// `not-at-rest`, `not-forward`, `saturated`, `not-finite`).
 #[allow(unsafe_code)] // `no_mangle`
 #[no_mangle]
 #[inline(never)]
@@ -124,15 +125,17 @@ pub fn bench_stream_loop(
     let push = black_box(push);
     for index in 0..stream.len {
         let (accel, pitch) = stream.get(index);
-        let before = estimator.in_stroke();
+        let before = estimator.rest_end();
         let event = push(estimator, accel, pitch);
-        let after = estimator.in_stroke();
-        if let Some(event) = event {
-            let _ = writeln!(out, "stream-mark {index} {}", name(&event));
-        } else if after != before {
-            let what = if after { "rest-end" } else { "stroke-end" };
-            let _ = writeln!(out, "stream-mark {index} {what}");
-        }
+        let after = estimator.rest_end();
+        let what = match (event, before, after) {
+            (Some(event), _, _) => name(&event),
+            (None, None, Some(_)) => "rest-end",
+            (None, Some(_), None) => "stroke-end",
+            (None, Some(a), Some(b)) if a != b => "re-anchor",
+            _ => continue,
+        };
+        let _ = writeln!(out, "stream-mark {index} {what}");
     }
 }
 

@@ -349,15 +349,29 @@ fn parse_trace(log: impl std::io::BufRead) -> Result<(Trace, Vec<String>)> {
     let mut other = Vec::new();
     // Inside a call: of the root (true) or the empty function, and its length so far.
     let mut inside: Option<(bool, u64)> = None;
-    for line in log.split(b'\n') {
-        let line = line.map_err(|e| Failure::new(format!("reading the trace: {e}")))?;
-        let Some(at) = line.windows(2).rposition(|w| w == b"] ") else {
+    let mut log = log;
+    let mut buffer = Vec::with_capacity(256);
+    loop {
+        buffer.clear();
+        let read = log
+            .read_until(b'\n', &mut buffer)
+            .map_err(|e| Failure::new(format!("reading the trace: {e}")))?;
+        if read == 0 {
+            break;
+        }
+        let line = buffer.strip_suffix(b"\n").unwrap_or(&buffer);
+        // `Trace 0: 0x… [……/pc/……/……] symbol`: the symbol follows the last "] ".
+        let mut at = line.len();
+        while at >= 2 && !(line[at - 2] == b']' && line[at - 1] == b' ') {
+            at -= 1;
+        }
+        if at < 2 {
             if !line.is_empty() && other.len() < 20 {
-                other.push(String::from_utf8_lossy(&line).into_owned());
+                other.push(String::from_utf8_lossy(line).into_owned());
             }
             continue;
-        };
-        let symbol = &line[at + 2..];
+        }
+        let symbol = &line[at..];
         match &mut inside {
             Some((root, length)) => {
                 if symbol == LOOP.as_bytes() || symbol == TIMED.as_bytes() {
@@ -381,8 +395,9 @@ fn parse_trace(log: impl std::io::BufRead) -> Result<(Trace, Vec<String>)> {
 
 /// What each sample did, from the image's `stream-mark` lines and the block length:
 /// the event on it (`impact: stroke`, `impact: not-forward`, …), `rest end` (a stroke
-/// starts integrating), `block end` (every 25 ms), joined with ` + `; otherwise
-/// `integrating` (a stroke is running) or `idle`.
+/// starts integrating), `rest end (re-anchor)` (a later rest replaces its origin),
+/// `block end` (every 25 ms), joined with ` + `; otherwise `integrating` (a stroke is
+/// running) or `idle`.
 pub fn causes(rate_hz: f64, samples: usize, marks: &[(usize, String)]) -> Vec<String> {
     // `sensors/src/streaming/config.rs`: `samples(0.025, rate, 8)`, in f32.
     let block = (((0.025f32 * rate_hz as f32) + 0.5) as usize).max(8);
@@ -393,6 +408,7 @@ pub fn causes(rate_hz: f64, samples: usize, marks: &[(usize, String)]) -> Vec<St
             let mut parts = Vec::new();
             match marks.get(&i) {
                 Some(&"rest-end") => parts.push("rest end".to_string()),
+                Some(&"re-anchor") => parts.push("rest end (re-anchor)".to_string()),
                 Some(&"stroke-end") => parts.push("stroke dropped".to_string()),
                 Some(event) => parts.push(format!("impact: {event}")),
                 None => {}
@@ -406,7 +422,7 @@ pub fn causes(rate_hz: f64, samples: usize, marks: &[(usize, String)]) -> Vec<St
                 parts.join(" + ")
             };
             match marks.get(&i) {
-                Some(&"rest-end") => integrating = true,
+                Some(&"rest-end" | &"re-anchor") => integrating = true,
                 Some(_) => integrating = false,
                 None => {}
             }
@@ -517,6 +533,21 @@ fn total(functions: &[(String, u64)]) -> u64 {
     functions.iter().map(|(_, s)| s).sum()
 }
 
+/// A memory routine every firmware links anyway (`memcpy`, `memset` and their AEABI
+/// entry points): not counted as the estimator's own code.
+fn shared(name: &str) -> bool {
+    name.starts_with("__aeabi_mem") || name.starts_with("compiler_builtins::mem::")
+}
+
+/// [`total`] without the [`shared`] routines.
+fn own(functions: &[(String, u64)]) -> u64 {
+    functions
+        .iter()
+        .filter(|(name, _)| !shared(name))
+        .map(|(_, s)| s)
+        .sum()
+}
+
 impl StreamBench {
     /// Mean, max, the first sample at the max and its cause.
     pub fn summary(&self) -> (f64, u64, usize, &str) {
@@ -557,6 +588,8 @@ impl StreamBench {
             "code_bytes": {
                 "push_raw": total(&self.code.push),
                 "api": total(&self.code.api),
+                "push_raw_own": own(&self.code.push),
+                "api_own": own(&self.code.api),
                 "push_raw_functions": functions(&self.code.push),
                 "api_functions": functions(&self.code.api),
             },
@@ -578,10 +611,13 @@ impl StreamBench {
             ));
         }
         text.push_str(&format!(
-            "  code: push_raw {} B reachable ({} functions), whole API {} B\n",
+            "  code: push_raw {} B reachable ({} functions; {} B without memcpy/memset), \
+             whole API (new, push_raw, finish) {} B ({} B without)\n",
             total(&self.code.push),
             self.code.push.len(),
-            total(&self.code.api)
+            own(&self.code.push),
+            total(&self.code.api),
+            own(&self.code.api)
         ));
         for (name, bytes) in &self.code.api {
             text.push_str(&format!("    {bytes:>6} B  {name}\n"));
@@ -615,6 +651,17 @@ Trace 0: 0x1 [0/c/0/0] bench_stream_loop
         assert_eq!(trace.counts, [3, 1]);
         assert_eq!(trace.empty, Some(2));
         assert_eq!(other, ["qemu: a message"]);
+    }
+
+    #[test]
+    fn memory_routines_are_shared() {
+        let list = [
+            ("__aeabi_memcpy4".to_string(), 156),
+            ("compiler_builtins::mem::memcpy".to_string(), 730),
+            ("__aeabi_l2f".to_string(), 120),
+            ("bench_stream_push".to_string(), 500),
+        ];
+        assert_eq!((total(&list), own(&list)), (1506, 620));
     }
 
     #[test]
