@@ -12,7 +12,7 @@
 //!   ([`cuesight::strike`], TP A.30) for ball speed and spin.
 //! * [`trigger`]: [`ImpactTrigger`] tells the capture loop when the ring holds the stroke.
 //! * [`streaming`]: [`StreamingEstimator`], the same estimate one sample at a time in
-//!   1,496 bytes, with no window: a stroke (or a typed fault) on the impact sample.
+//!   1,464 bytes, with no window: a stroke (or a typed fault) on the impact sample.
 //! * [`emulated`]: an LSM6DSOX register model behind the embedded-hal `I2c` trait, on
 //!   which the unchanged driver runs (QEMU, host tests); [`trace`]: the CSV trace format
 //!   that feeds it, and a byte-at-a-time parser.
