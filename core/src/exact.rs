@@ -48,6 +48,10 @@ const FINAL_STEP_REFINEMENTS: usize = 3;
 /// approaching (e* near 0): 2⁻¹⁶ of a step, 1/(24·65,536) of the normal impulse.
 const SEPARATION_BISECTIONS: usize = 16;
 
+/// Normal approach velocity at the impact's end, relative to the approach speed, left
+/// as rounding: 64 units of f32 rounding (2⁻¹⁸).
+const APPROACH_TOLERANCE: f32 = 3.814_697_3e-6;
+
 #[derive(Clone, Copy)]
 struct State<R> {
     slip_y: R,
@@ -388,7 +392,10 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
                 // step's actual map (table friction, a stick inside the step) can leave
                 // v_n a little below zero. Then the end is where v_n reaches zero
                 // (bisection on the partial steps; v_n ≥ 0 at λ = 1 in this step).
-                if result.1 .0.normal_velocity < zero {
+                // Rounding-size approaches (64 f32 units of the approach speed) are left:
+                // bisecting them cost every such scene 16 partial steps for nothing.
+                let approaching = -R::of(APPROACH_TOLERANCE) * approach;
+                if result.1 .0.normal_velocity < approaching {
                     let (mut lo, mut hi) = (lambda, R::ONE);
                     let mut separated = (zero, model.advance(&state, dp, stuck));
                     for _ in 0..SEPARATION_BISECTIONS {

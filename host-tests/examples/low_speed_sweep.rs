@@ -431,7 +431,7 @@ fn svg(speeds: &[f64], rows: &[Row]) -> String {
         for d in -3..=0 {
             let u = 10f64.powi(d);
             let x = px(u);
-            let _ = writeln!(s, "<line x1=\"{x:.1}\" y1=\"{oy}\" x2=\"{x:.1}\" y2=\"{:.1}\" stroke=\"#e4e4e4\"/><text x=\"{x:.1}\" y=\"{:.1}\" text-anchor=\"middle\" font-size=\"11\">{u}</text>", oy + panel_h, oy + panel_h + 14.0);
+            let _ = writeln!(s, "<line x1=\"{x:.1}\" y1=\"{oy}\" x2=\"{x:.1}\" y2=\"{:.1}\" stroke=\"#e4e4e4\"/><text x=\"{x:.1}\" y=\"{:.1}\" text-anchor=\"middle\" font-size=\"11\">{u}</text>", oy + panel_h, oy + panel_h + 18.0);
         }
         for d in -4..=0 {
             let e = 10f64.powi(d);

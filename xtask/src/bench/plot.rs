@@ -170,6 +170,58 @@ fn draw_targets(chart: &mut Chart, (x0, x1): (f64, f64), (y0, y1): (f64, f64)) -
     Ok(())
 }
 
+/// Offsets (px, from the point to the label's top-left corner) that keep every label
+/// clear of the others and of every point: for each point, cheapest first, the first of
+/// eight places around it whose box (12 px sans-serif: about 7 px a character, 14 px
+/// high) overlaps no label placed before and no point's marker.
+fn label_offsets(chart: &Chart, points: &[&Point]) -> Vec<(i32, i32)> {
+    type Box = (i32, i32, i32, i32); // left, top, right, bottom
+    let overlaps = |a: Box, b: Box| a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3;
+    let at: Vec<(i32, i32)> = points
+        .iter()
+        .map(|p| chart.backend_coord(&(p.instructions, p.error)))
+        .collect();
+    let markers: Vec<Box> = at
+        .iter()
+        .map(|&(x, y)| (x - 9, y - 9, x + 9, y + 9))
+        .collect();
+    let mut order: Vec<usize> = (0..points.len()).collect();
+    order.sort_by(|&a, &b| points[a].instructions.total_cmp(&points[b].instructions));
+    let mut placed: Vec<Box> = Vec::new();
+    let mut offsets = vec![(7, -14); points.len()];
+    for i in order {
+        let (x, y) = at[i];
+        let (w, h) = (7 * points[i].label.chars().count() as i32, 14);
+        let candidates = [
+            (7, -14),
+            (7, 2),
+            (-w - 7, -14),
+            (-w - 7, 2),
+            (-w / 2, -h - 10),
+            (-w / 2, 10),
+            (12, -h / 2),
+            (-w - 12, -h / 2),
+        ];
+        let clear = |&(dx, dy): &(i32, i32)| {
+            let b = (x + dx, y + dy, x + dx + w, y + dy + h);
+            !placed.iter().any(|&p| overlaps(b, p)) && !markers.iter().any(|&m| overlaps(b, m))
+        };
+        let offset = candidates
+            .iter()
+            .copied()
+            .find(clear)
+            .unwrap_or(candidates[0]);
+        placed.push((
+            x + offset.0,
+            y + offset.1,
+            x + offset.0 + w,
+            y + offset.1 + h,
+        ));
+        offsets[i] = offset;
+    }
+    offsets
+}
+
 fn draw_points(chart: &mut Chart, points: &[Point]) -> Result {
     // The Pareto front as a staircase.
     let front = pareto(points);
@@ -191,13 +243,21 @@ fn draw_points(chart: &mut Chart, points: &[Point]) -> Result {
             .iter()
             .filter(move |p| p.backend == "libm" && p.precision == precision)
     };
+    let labelled: Vec<&Point> = libm("f32").chain(libm("f64")).collect();
+    let offsets = label_offsets(chart, &labelled);
     for (precision, color) in [("f32", F32), ("f64", F64)] {
         chart
-            .draw_series(libm(precision).map(|p| {
-                EmptyElement::at((p.instructions, p.error))
-                    + Circle::new((0, 0), 5, color.filled())
-                    + Text::new(p.label.clone(), (7, -14), ("sans-serif", 12).into_font())
-            }))
+            .draw_series(
+                labelled
+                    .iter()
+                    .zip(&offsets)
+                    .filter(|(p, _)| p.precision == precision)
+                    .map(|(p, &offset)| {
+                        EmptyElement::at((p.instructions, p.error))
+                            + Circle::new((0, 0), 5, color.filled())
+                            + Text::new(p.label.clone(), offset, ("sans-serif", 12).into_font())
+                    }),
+            )
             .map_err(failure)?
             .label(format!("{precision}, libm"))
             .legend(move |(x, y)| Circle::new((x + 9, y), 5, color.filled()));
