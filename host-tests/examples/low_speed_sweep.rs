@@ -440,7 +440,10 @@ fn svg(speeds: &[f64], rows: &[Row]) -> String {
         }
         let y = py(THRESHOLD);
         let _ = writeln!(s, "<line x1=\"{ox}\" y1=\"{y:.1}\" x2=\"{:.1}\" y2=\"{y:.1}\" stroke=\"black\" stroke-dasharray=\"4 3\"/>", ox + panel_w);
-        for r in rows.iter().filter(|r| r.scenario.mu == 0.05 && r.scenario.spin == *spin) {
+        for r in rows
+            .iter()
+            .filter(|r| r.scenario.mu == 0.05 && r.scenario.spin == *spin)
+        {
             let ci = CUTS.iter().position(|c| *c == r.scenario.cut_deg).unwrap();
             let points: Vec<String> = speeds
                 .iter()
@@ -473,7 +476,11 @@ fn svg(speeds: &[f64], rows: &[Row]) -> String {
         bottom + 34.0
     );
     let ly = bottom + 58.0;
-    let _ = writeln!(s, "<g id=\"legend\"><text x=\"{left}\" y=\"{:.1}\">cut angle:</text>", ly + 4.0);
+    let _ = writeln!(
+        s,
+        "<g id=\"legend\"><text x=\"{left}\" y=\"{:.1}\">cut angle:</text>",
+        ly + 4.0
+    );
     for (ci, cut) in CUTS.iter().enumerate() {
         let lx = left + 80.0 + 110.0 * ci as f64;
         let _ = writeln!(s, "<line x1=\"{lx}\" y1=\"{ly}\" x2=\"{:.1}\" y2=\"{ly}\" stroke=\"{}\" stroke-width=\"2\"/><text x=\"{:.1}\" y=\"{:.1}\">{cut}°</text>", lx + 28.0, colours[ci], lx + 34.0, ly + 4.0);
