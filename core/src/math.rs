@@ -2,7 +2,7 @@
 //!
 //! Backends are chosen by Cargo feature: `libm` (default, accurate) or `micromath`
 //! (smaller and faster, approximate). Exactly one must be enabled. With `libm`, `exp`,
-//! `ln`, `exp_m1`, `ln_1p` and `atan2` are [`accurate`]'s f32 routines, within 1–4 ulps
+//! `ln`, `exp_m1`, `ln_1p` and `atan2` are `math::accurate`'s f32 routines, within 1–4 ulps
 //! of the `libm` crate's (its tests check them against it): on the firmware they take
 //! about 1,160 B less flash than `libm`'s `expf`, `logf`, `expm1f`, `log1pf`, `atan2f`
 //! and `atanf`; on the host `libm` gives the square root. On an FPU-equipped Cortex-M (`thumbv7em-none-eabihf`) the square root is

@@ -1,8 +1,8 @@
 //! SVG drawing of a played shot (`cuesight shot --svg FILE`): the table (rails with
-//! their diamonds, cloth, pockets to scale with their target segments; [`table`]), every
+//! their diamonds, cloth, pockets to scale with their target segments; `table`), every
 //! ball with its number, the ghost ball, the cue ball's path before and after the
 //! contact, the object ball's path, the chosen pocket, a key with a scale bar and the
-//! tip offset ([`legend`]), and the guidance as a caption.
+//! tip offset (`legend`), and the guidance as a caption.
 //!
 //! Written as text (no drawing crate: a few dozen elements do not need one). The table
 //! is drawn with `x` to the right and `y` up, 1000 px along its length. Post-impact
