@@ -71,6 +71,7 @@ impl Model {
     ];
 
     /// Lower-case, hyphenated name (`ideal`, `kim`, `kim-grip`, `seed-exact`, `exact`).
+    #[inline(never)]
     pub const fn name(self) -> &'static str {
         match self {
             Model::Ideal => "ideal",

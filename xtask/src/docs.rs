@@ -293,9 +293,9 @@ fn value(name: &str) -> Result<String> {
     Ok(match name {
         "firmware-flash" => thousands(firmware_sizes().map(|s| s.text + s.data)?),
         "firmware-static-ram" => thousands(firmware_sizes().map(|s| s.data + s.bss)?),
-        "firmware-flash-over-target" => {
+        "firmware-flash-under-target" => {
             let flash = firmware_sizes().map(|s| s.text + s.data)?;
-            thousands(flash.saturating_sub(size::FLASH_TARGET))
+            thousands(size::FLASH_TARGET.saturating_sub(flash))
         }
         "nrf52840-flash" => thousands(nrf52840_sizes().map(|s| s.text + s.data)?),
         "nrf52840-static-ram" => thousands(nrf52840_sizes().map(|s| s.data + s.bss)?),

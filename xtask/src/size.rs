@@ -73,16 +73,17 @@ pub fn report(elf: &Path) -> Result {
 
 /// The flash budget of the release image, everything included: 48 KiB (the design
 /// card: a BLE SoftDevice must fit beside the firmware on a 192 KB part; issue 6's
-/// budget was 64 KiB). Issue 14's target, 44 KiB, is reported against [`FLASH_TARGET`].
+/// budget was 64 KiB).
 pub const FLASH_BUDGET: u64 = 48 * 1024;
-/// Issue 14's flash target for the release image: 44 KiB (reported, not enforced: not
-/// met, see docs/reliability.md).
+/// Issue 14's flash target for the release image with what it serves today (the device
+/// link and its requests, the boot self-test): 44 KiB, enforced. The live cue (issue 15)
+/// adds its pipeline within [`FLASH_BUDGET`]; that change moves this line.
 pub const FLASH_TARGET: u64 = 44 * 1024;
 /// Issue 6's static RAM budget: 16 KiB.
 pub const STATIC_RAM_BUDGET: u64 = 16 * 1024;
 
-/// [`report`], then fails if flash (text + data) exceeds [`FLASH_BUDGET`] or static RAM
-/// (data + bss) exceeds [`STATIC_RAM_BUDGET`].
+/// [`report`], then fails if flash (text + data) exceeds [`FLASH_TARGET`] (and so
+/// [`FLASH_BUDGET`]) or static RAM (data + bss) exceeds [`STATIC_RAM_BUDGET`].
 pub fn check_budgets(elf: &Path) -> Result {
     report(elf)?;
     let bytes =
@@ -94,6 +95,11 @@ pub fn check_budgets(elf: &Path) -> Result {
         over.push(format!(
             "flash {flash} bytes exceeds the budget of {FLASH_BUDGET}"
         ));
+    } else if flash > FLASH_TARGET {
+        over.push(format!(
+            "flash {flash} bytes exceeds issue 14's target of {FLASH_TARGET} by {}",
+            flash - FLASH_TARGET
+        ));
     }
     if ram > STATIC_RAM_BUDGET {
         over.push(format!(
@@ -104,12 +110,9 @@ pub fn check_budgets(elf: &Path) -> Result {
         return Err(Failure::new(over.join("; ")));
     }
     println!("static RAM {ram} bytes: within the budget of {STATIC_RAM_BUDGET}");
-    println!("flash {flash} bytes: within the budget of {FLASH_BUDGET}");
-    if flash > FLASH_TARGET {
-        println!(
-            "flash {flash} bytes: {} over issue 14's target of {FLASH_TARGET}",
-            flash - FLASH_TARGET
-        );
-    }
+    println!(
+        "flash {flash} bytes: within issue 14's target of {FLASH_TARGET} ({} to spare) and the budget of {FLASH_BUDGET}",
+        FLASH_TARGET - flash
+    );
     Ok(())
 }
