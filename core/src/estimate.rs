@@ -27,9 +27,12 @@
 //! reference solving the seed's own physics.)
 //!
 //! Outside the calibrated domain (μ(0) > 0.12, μ_s > 0.4, e* < 0.9 or any cue-ball/table
-//! friction μ_ct, which `Kim`, `SeedExact` and `Ideal` ignore) neither `Kim`, `KimGrip`
-//! nor `SeedExact` is picked;
-//! `Ideal`'s estimate is the size of the effects it leaves out and holds anywhere.
+//! friction μ_ct, which `Kim`, `SeedExact` and `Ideal` ignore) `Kim`, `KimGrip` and
+//! `SeedExact` report an infinite estimate; `Ideal`'s estimate is the size of the effects
+//! it leaves out and holds anywhere.
+//!
+//! `Auto`'s ladder ([`select`]) is the Pareto front of `docs/tradeoff.md`: `Ideal` where
+//! friction cannot act, else `KimGrip`, else `Exact`.
 
 use crate::impact::Impact;
 use crate::kim_grip::initial_slip;
@@ -59,20 +62,33 @@ pub fn error_estimate(params: &Params, impact: &Impact, model: Model) -> f32 {
 }
 
 /// The cheapest tier whose estimate meets `tolerance` (`Exact` if none does), with its
-/// estimate. Tiers are tried in the order of [`Model::ALL`] (mean cost on the
-/// Cortex-M4F, `docs/tradeoff.md`).
+/// estimate.
+///
+/// The ladder is the Pareto front of `docs/tradeoff.md` (mean instructions on the
+/// Cortex-M4F against the largest error on the grid): `Ideal` (96 instructions),
+/// `KimGrip` (129), `Exact` (11,590). `Kim` (163, 9.26 % of U) and `SeedExact` (4,225,
+/// 0.140 %) are dominated by `KimGrip` (129, 0.111 %): cheaper or as cheap and more
+/// accurate, so `Auto` never picks them; they stay callable as the seed's
+/// reproductions.
+///
+/// `Ideal` must also leave out no more friction than `tolerance` of the object ball's
+/// own normal impulse (`1.4 J ≤ T p₀`), not only of `U`: at a thin cut the whole impact
+/// is a small share of `U`, so the estimate against `U` let `Ideal` through where its
+/// throw is wholly wrong (`--cut 89.9 --roll --mu 0.06`: 0° where the reference throws
+/// the object ball 3.4°; issue 16). `J/p₀` is about the throw `Ideal` misses (rad), so
+/// `Ideal` is picked where friction cannot act (a frictionless law, no slip) or is too
+/// weak to turn the object ball by more than `T` rad, and stays continuous as μ → 0.
 #[inline(never)]
 pub fn select(params: &Params, impact: &Impact, tolerance: f32) -> (Model, f32) {
     let f = Features::of(params, impact);
-    for (model, estimate) in [
-        (Model::Ideal, f.ideal()),
-        (Model::Kim, f.kim()),
-        (Model::KimGrip, f.kim_grip()),
-        (Model::SeedExact, f.seed_exact()),
-    ] {
-        if estimate <= tolerance {
-            return (model, estimate);
-        }
+    let ideal = f.ideal();
+    let throw_missed = f.table_factor * f.impulse;
+    if ideal <= tolerance && throw_missed <= tolerance * f.normal {
+        return (Model::Ideal, ideal);
+    }
+    let kim_grip = f.kim_grip();
+    if kim_grip <= tolerance {
+        return (Model::KimGrip, kim_grip);
     }
     (Model::Exact, f.exact())
 }
@@ -85,6 +101,8 @@ struct Features {
     table_factor: f32,
     speed: f32,
     restitution_loss: f32,
+    /// `p₀ = (1+e*) U_x / 2`: the object ball's speed along the line of centres, about.
+    normal: f32,
     impulse: f32,
     kim_budget: f32,
     stick_budget: f32,
@@ -142,6 +160,7 @@ impl Features {
             table_factor: 1.0 + params.mu_s() + params.cue_table_friction(),
             speed,
             restitution_loss: 0.5 * (1.0 - e) * u.x,
+            normal: p0,
             impulse,
             kim_budget,
             stick_budget,

@@ -30,9 +30,13 @@ pub enum Model {
     /// The full rigid-body impact integrated in fixed memory (`exact` module): the
     /// reference solver's physics at a fixed step count. Slowest, most accurate.
     Exact,
-    /// The cheapest of the tiers above whose a-priori error estimate
-    /// ([`crate::error_estimate`]) is at most `tolerance`, in `max(|Δv|, R|Δω|) / U`
-    /// (e.g. 1e-3 for 0.1 % of the cue-ball speed); `Exact` if none is.
+    /// The cheapest tier on the Pareto front of cost and accuracy (`Ideal`, `KimGrip`,
+    /// `Exact`: `Kim` and `SeedExact` are dominated by `KimGrip`) whose a-priori error
+    /// estimate ([`crate::error_estimate`]) is at most `tolerance`, in
+    /// `max(|Δv|, R|Δω|) / U` (e.g. 1e-3 for 0.1 % of the cue-ball speed); `Exact` if none
+    /// is. `Ideal` also only where the friction it leaves out is within `tolerance` of the
+    /// object ball's normal impulse, so a thin cut keeps its throw
+    /// ([`crate::select_model`]).
     ///
     /// ```
     /// use cuesight::{collide, error_estimate, select_model, Impact, Model, Params};

@@ -74,3 +74,48 @@ fn auto_rejects_a_bad_tolerance() {
         assert_eq!(e.field(), Some(cuesight::Field::Tolerance));
     }
 }
+
+/// Issue 16's thin-cut cases, where `Auto` picked `Ideal` (no throw at all) because its
+/// error against `U` was within the tolerance while the whole impact was a small share of
+/// `U`: `cuesight collide --speed 2 --cut 89.9 --roll --mu 0.06` (the reference throws the
+/// object ball 3.434°) and `--cut 89.99 --mu 1 --mu-s 0` (45°). At both tolerances `Auto`
+/// must not pick `Ideal`, and its throw must be the reference's within 0.01° (golden
+/// values: the f64 reference solver, `cuesight_host::reference::collide`).
+#[test]
+fn auto_never_picks_ideal_where_friction_throws_a_thin_cut() {
+    use cuesight::{Impact, Params};
+    let rolling = |speed: f32, cut_deg: f32| {
+        let cut = cut_deg.to_radians();
+        Impact::rolling(
+            [speed * cut.cos(), speed * cut.sin()],
+            Params::POOL.radius(),
+        )
+        .unwrap()
+    };
+    let cases = [
+        (
+            "--cut 89.9 --roll --mu 0.06",
+            Params::POOL.with_mu(0.06).unwrap(),
+            rolling(2.0, 89.9),
+        ),
+        (
+            "--cut 89.99 --mu 1 --mu-s 0",
+            Params::POOL.with_mu(1.0).unwrap().with_mu_s(0.0).unwrap(),
+            Impact::from_cut_degrees(2.0, 89.99, [0.0; 3]).unwrap(),
+        ),
+    ];
+    for (name, params, impact) in cases {
+        let reference = cuesight_host::reference::collide(&params, &impact).throw_angle_deg();
+        assert!(reference > 3.0, "{name}: reference throw {reference}°");
+        for tolerance in [1e-2f32, 1e-3] {
+            let (tier, _) = select_model(&params, &impact, tolerance);
+            assert_ne!(tier, Model::Ideal, "{name}, tolerance {tolerance}");
+            let auto = collide(&params, &impact, Model::Auto { tolerance }).unwrap();
+            let error = (auto.throw_angle_deg() - reference).abs();
+            assert!(
+                error < 0.01,
+                "{name}, tolerance {tolerance}: {tier:?} off by {error}°"
+            );
+        }
+    }
+}
