@@ -4,17 +4,18 @@ use std::fmt::Write as _;
 
 use serde_json::{json, Map, Value};
 
-use super::fit::{Fit, Fold};
+use super::fit::{Estimate, Fit, Fold};
 
-fn parameter_line(out: &mut String, name: &str, value: f64, stderr: Option<(f64, f64)>) {
+fn parameter_line(out: &mut String, name: &str, value: f64, estimate: Option<&Estimate>) {
     let unit = match name {
         "mu_c" => " s/m",
         _ => "",
     };
-    let _ = match stderr {
-        Some((se, ci)) => writeln!(
+    let _ = match estimate {
+        Some(e) => writeln!(
             out,
-            "  {name:<12} = {value:>10.5}{unit} ± {ci:.5} (95 %; standard error {se:.5})"
+            "  {name:<12} = {value:>10.5}{unit}  95 % interval [{:.5}, {:.5}]  (standard error {:.5}, linearised ± {:.5})",
+            e.lower, e.upper, e.stderr, e.ci95
         ),
         None => writeln!(out, "  {name:<12} = {value:>10.5}{unit} (fixed)"),
     };
@@ -47,12 +48,7 @@ pub fn text(fit: &Fit, source: &str) -> String {
         ("restitution", ph.restitution),
         ("mu_s", ph.mu_s),
     ] {
-        parameter_line(
-            &mut out,
-            name,
-            value,
-            fitted(name).map(|e| (e.stderr, e.ci95)),
-        );
+        parameter_line(&mut out, name, value, fitted(name));
     }
     let (max, at) = fit.max_deg;
     let _ = writeln!(
@@ -164,9 +160,11 @@ pub fn json(fit: &Fit, folds: Option<&[Fold]>) -> Value {
     let ph = fit.physics;
     let mut stderr = Map::new();
     let mut ci95 = Map::new();
+    let mut interval = Map::new();
     for e in &fit.estimates {
         stderr.insert(e.name.to_owned(), json!(e.stderr));
         ci95.insert(e.name.to_owned(), json!(e.ci95));
+        interval.insert(e.name.to_owned(), json!([e.lower, e.upper]));
     }
     let residuals: Vec<Value> = fit
         .points
@@ -193,6 +191,8 @@ pub fn json(fit: &Fit, folds: Option<&[Fold]>) -> Value {
         "model": fit.solver.name(),
         "stderr": stderr,
         "ci95": ci95,
+        "interval95": interval,
+        "intervals": fit.intervals.name(),
         "rms_deg": fit.rms_deg,
         "max_deg": fit.max_deg.0,
         "points": fit.points.len(),
