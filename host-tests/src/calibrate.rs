@@ -59,7 +59,8 @@ pub struct Flags {
     #[arg(long, value_name = "FILE")]
     pub throw: PathBuf,
     /// Parameters to fit: mu (constant μ), mu-v (μ(v) = mu + mu_b·exp(−mu_c·v)), mu-v-e
-    /// (μ(v) and e*).
+    /// (μ(v) and e*), mu-v-k (μ(v) and the contact's tangential compliance
+    /// κ = k_t/k_n; always by the reference solver).
     #[arg(long, value_enum, default_value = "mu-v")]
     pub fit: FitKind,
     /// Model of the throw: kim-grip (the core's tier, f64 evaluation), exact, or
@@ -125,6 +126,10 @@ pub fn options(flags: &Flags) -> Result<FitOptions, CalibrateError> {
     options.max_evaluations = flags.max_evaluations;
     options.progress = true;
     options.intervals = flags.intervals;
+    if flags.fit == FitKind::MuVK {
+        // The compliant contact exists in the reference solver only.
+        options.solver = Solver::Reference;
+    }
     if !(flags.restitution.is_finite() && (0.0..=1.0).contains(&flags.restitution)) {
         return Err(invalid(format!(
             "restitution = {} is outside [0, 1]",

@@ -195,6 +195,12 @@ fn starts(kind: FitKind, physics: &Physics) -> Vec<Vec<f64>> {
             vec![0.03, 0.1, 0.3, e],
             vec![0.02, 0.2, 3.0, e],
         ],
+        // The throw oscillates with η = √(3.5 κ) (β = −cos(π η) for a stuck contact):
+        // starts in the first two lobes, near Mindlin's elastic value and rigid-like.
+        FitKind::MuVK => [0.1, 0.15, 1.0, 30.0]
+            .iter()
+            .map(|&kappa| vec![0.02, 0.1, 0.44, kappa])
+            .collect(),
     }
 }
 

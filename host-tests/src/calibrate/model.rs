@@ -18,6 +18,10 @@ pub enum FitKind {
     /// μ(v) and the energetic restitution e*.
     #[value(name = "mu-v-e")]
     MuVE,
+    /// μ(v) and the contact's tangential compliance `κ = k_t/k_n` (the reference
+    /// solver's compliant contact, `reference/compliant.rs`; always `--model reference`).
+    #[value(name = "mu-v-k")]
+    MuVK,
 }
 
 impl FitKind {
@@ -27,6 +31,7 @@ impl FitKind {
             FitKind::Mu => "mu",
             FitKind::MuV => "mu-v",
             FitKind::MuVE => "mu-v-e",
+            FitKind::MuVK => "mu-v-k",
         }
     }
 
@@ -36,6 +41,7 @@ impl FitKind {
             FitKind::Mu => &["mu"],
             FitKind::MuV => &["mu", "mu_b", "mu_c"],
             FitKind::MuVE => &["mu", "mu_b", "mu_c", "restitution"],
+            FitKind::MuVK => &["mu", "mu_b", "mu_c", "tangential_stiffness"],
         }
     }
 
@@ -89,6 +95,9 @@ pub struct Physics {
     pub radius: f64,
     /// Ball mass (kg).
     pub mass: f64,
+    /// Tangential compliance `κ = k_t/k_n` of the ball–ball contact (reference solver
+    /// only); `None`: the rigid contact.
+    pub tangential_stiffness: Option<f64>,
 }
 
 impl Physics {
@@ -103,6 +112,7 @@ impl Physics {
             mu_s: p.mu_s() as f64,
             radius: p.radius() as f64,
             mass: p.mass() as f64,
+            tangential_stiffness: None,
         }
     }
 
@@ -113,13 +123,15 @@ impl Physics {
                 self.mu_b = 0.0;
                 self.mu_c = 0.0;
             }
-            FitKind::MuV | FitKind::MuVE => {
+            FitKind::MuV | FitKind::MuVE | FitKind::MuVK => {
                 self.mu_b = theta[1];
                 self.mu_c = theta[2];
             }
         }
-        if kind == FitKind::MuVE {
-            self.restitution = theta[3];
+        match kind {
+            FitKind::MuVE => self.restitution = theta[3],
+            FitKind::MuVK => self.tangential_stiffness = Some(theta[3]),
+            FitKind::Mu | FitKind::MuV => {}
         }
         self
     }
@@ -144,6 +156,10 @@ impl Physics {
 pub fn model_throw(solver: Solver, physics: &Physics, m: &Measurement) -> Result<f64, String> {
     let w = m.spin.vector(m.speed_mps, m.cut_deg, physics.radius);
     match solver {
+        Solver::KimGrip | Solver::Exact if physics.tangential_stiffness.is_some() => Err(
+            "the compliant contact (tangential_stiffness) is in the reference solver only: --model reference"
+                .to_owned(),
+        ),
         Solver::KimGrip | Solver::Exact => {
             let params = physics.core()?;
             let impact =
@@ -169,7 +185,11 @@ pub fn model_throw(solver: Solver, physics: &Physics, m: &Measurement) -> Result
             };
             let phi = m.cut_deg.to_radians();
             let v = DVec3::new(m.speed_mps * phi.cos(), m.speed_mps * phi.sin(), 0.0);
-            reference::solve(&p, v, DVec3::from(w), &ReferenceConfig::default())
+            let config = ReferenceConfig {
+                tangential_stiffness: physics.tangential_stiffness,
+                ..ReferenceConfig::default()
+            };
+            reference::solve(&p, v, DVec3::from(w), &config)
                 .map(|o| o.throw_angle_deg())
                 .map_err(|e| format!("reference solver: {e:?}"))
         }

@@ -10,15 +10,45 @@ use std::time::Instant;
 use levenberg_marquardt::LeastSquaresProblem;
 use nalgebra::{DMatrix, DVector, Dyn, Owned};
 
-use super::fit::FitOptions;
+use super::fit::{FitKind, FitOptions};
 use super::input::Measurement;
 use super::model::model_throw;
 
 /// Typical size of each parameter (finite-difference steps and penalty scale).
-pub(super) const TYPICAL: [f64; 4] = [0.01, 0.1, 1.0, 0.1];
+const TYPICAL: [f64; 4] = [0.01, 0.1, 1.0, 0.1];
 /// Bounds the core accepts: a ∈ [1e-6, 1], b ∈ [0, 1], c ∈ [0, 100], e* ∈ [0, 1].
-pub(super) const LOWER: [f64; 4] = [1e-6, 0.0, 0.0, 0.0];
-pub(super) const UPPER: [f64; 4] = [1.0, 1.0, 100.0, 1.0];
+const LOWER: [f64; 4] = [1e-6, 0.0, 0.0, 0.0];
+const UPPER: [f64; 4] = [1.0, 1.0, 100.0, 1.0];
+/// The tangential compliance κ = k_t/k_n (fourth parameter of `mu-v-k`): typical size
+/// and range (0.05: η = 0.42; 100: η = 18.7, within 0.01° of the rigid contact).
+const KAPPA: (f64, f64, f64) = (0.1, 0.05, 100.0);
+
+/// Typical size of parameter `k` of `kind`.
+pub(super) fn typical(kind: FitKind, k: usize) -> f64 {
+    if kind == FitKind::MuVK && k == 3 {
+        KAPPA.0
+    } else {
+        TYPICAL[k]
+    }
+}
+
+/// Lower bound of parameter `k` of `kind`.
+pub(super) fn lower(kind: FitKind, k: usize) -> f64 {
+    if kind == FitKind::MuVK && k == 3 {
+        KAPPA.1
+    } else {
+        LOWER[k]
+    }
+}
+
+/// Upper bound of parameter `k` of `kind`.
+pub(super) fn upper(kind: FitKind, k: usize) -> f64 {
+    if kind == FitKind::MuVK && k == 3 {
+        KAPPA.2
+    } else {
+        UPPER[k]
+    }
+}
 /// Weight of a bound violation of one `TYPICAL` unit, in weighted-residual units.
 const PENALTY: f64 = 1e3;
 
@@ -61,7 +91,10 @@ impl Problem<'_> {
         let mut t: Vec<f64> = theta
             .iter()
             .enumerate()
-            .map(|(k, &x)| x.clamp(LOWER[k], UPPER[k]))
+            .map(|(k, &x)| {
+                let kind = self.options.kind;
+                x.clamp(lower(kind, k), upper(kind, k))
+            })
             .collect();
         // a + b ≤ 1 (core's FrictionLaw).
         if t.len() > 1 && t[0] + t[1] > 1.0 {
@@ -122,14 +155,15 @@ impl Problem<'_> {
             .iter()
             .enumerate()
             .map(|(k, &x)| {
-                let below = (LOWER[k] - x).max(0.0);
-                let above = (x - UPPER[k]).max(0.0);
+                let kind = self.options.kind;
+                let below = (lower(kind, k) - x).max(0.0);
+                let above = (x - upper(kind, k)).max(0.0);
                 let sum = if k == 1 {
                     (theta[0] + x - 1.0).max(0.0)
                 } else {
                     0.0
                 };
-                PENALTY * (below + above + sum) / TYPICAL[k]
+                PENALTY * (below + above + sum) / typical(self.options.kind, k)
             })
             .collect()
     }
@@ -187,7 +221,7 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
         let mut j = DMatrix::zeros(n + p, free);
         for f in 0..free {
             let k = self.full_index(f);
-            let h = 1e-4 * theta[k].abs().max(TYPICAL[k]);
+            let h = 1e-4 * theta[k].abs().max(typical(self.options.kind, k));
             let (mut up, mut down) = (theta.clone(), theta.clone());
             up[k] += h;
             down[k] -= h;

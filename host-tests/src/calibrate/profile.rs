@@ -35,7 +35,7 @@ use nalgebra::DVector;
 
 use super::fit::{FitError, FitOptions};
 use super::input::Measurement;
-use super::problem::{Problem, LOWER, TYPICAL, UPPER};
+use super::problem::{lower, typical, upper, Problem};
 
 /// What a profile search needs of the fit.
 pub(super) struct Profiler<'a> {
@@ -147,7 +147,9 @@ impl Profiler<'_> {
     /// One end of parameter `k`'s 95 % profile interval: `direction` −1 (lower) or +1
     /// (upper); `se` the linearised standard error (sets the first step).
     pub(super) fn end(&self, k: usize, direction: f64, se: f64) -> Result<f64, FitError> {
-        let bound = if direction < 0.0 { LOWER[k] } else { UPPER[k] };
+        let kind = self.options.kind;
+        let (low, high) = (lower(kind, k), upper(kind, k));
+        let bound = if direction < 0.0 { low } else { high };
         let centre = self.theta[k];
         if centre == bound {
             return Ok(bound);
@@ -157,14 +159,14 @@ impl Profiler<'_> {
         let step0 = if se.is_finite() && se > 0.0 {
             self.t * se
         } else {
-            0.1 * TYPICAL[k]
+            0.1 * typical(kind, k)
         };
         // Bracket: `inside` has |τ| ≤ t, `outside` |τ| > t.
         let mut inside = (centre, -self.t, others.clone());
         let mut step = step0;
         let mut outside = None;
         for _ in 0..40 {
-            let x = (centre + direction * step).clamp(LOWER[k], UPPER[k]);
+            let x = (centre + direction * step).clamp(low, high);
             let (s, o) = self.profile(k, x, &inside.2)?;
             let g = self.excess(s);
             if g > 0.0 {

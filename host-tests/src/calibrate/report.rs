@@ -41,13 +41,17 @@ pub fn text(fit: &Fit, source: &str) -> String {
     );
     let fitted = |name: &str| fit.estimates.iter().find(|e| e.name == name);
     let ph = fit.physics;
+    let compliance = ph.tangential_stiffness.map(|k| ("tangential_stiffness", k));
     for (name, value) in [
         ("mu", ph.mu),
         ("mu_b", ph.mu_b),
         ("mu_c", ph.mu_c),
         ("restitution", ph.restitution),
         ("mu_s", ph.mu_s),
-    ] {
+    ]
+    .into_iter()
+    .chain(compliance)
+    {
         parameter_line(&mut out, name, value, fitted(name));
     }
     let (max, at) = fit.max_deg;
@@ -199,6 +203,10 @@ pub fn json(fit: &Fit, folds: Option<&[Fold]>) -> Value {
         "above_ceiling": fit.above_ceiling(),
         "residuals": residuals,
     });
+    if let (Some(kappa), Some(map)) = (ph.tangential_stiffness, v.as_object_mut()) {
+        // Not a `--params` key: `collide` and `shot` have no compliant contact.
+        map.insert("tangential_stiffness".to_owned(), json!(kappa));
+    }
     if let (Some(folds), Some(map)) = (folds, v.as_object_mut()) {
         let (rms, max, n) = pooled(folds);
         let list: Vec<Value> = folds
