@@ -26,7 +26,14 @@
 //!   compression (seed eq. (37)).
 //!
 //! Sliding steps use the midpoint rule for the friction direction (second order);
-//! compression end, stick onset and impact end are located inside their steps.
+//! compression end, stick onset and impact end are located inside their steps
+//! (`rigid.rs`).
+//!
+//! Optionally (`ReferenceConfig::tangential_stiffness`, off by default) the ball–ball
+//! contact is compliant instead: a normal and a tangential spring, the tangential one
+//! in series with the Coulomb slider, so that stored tangential strain can reverse the
+//! slip and throw can exceed the rigid ceiling (`compliant.rs`, which gives the model,
+//! its sources and its closed-form checks; issue 19).
 
 use glam::DVec3;
 
