@@ -137,6 +137,10 @@ pub fn cross_validation_text(folds: &[Fold]) -> String {
             f.rms_deg,
             f.max_deg
         );
+        if let Some(kappa) = p.tangential_stiffness {
+            out.pop();
+            let _ = writeln!(out, "  (kappa {kappa:.4})");
+        }
     }
     let (rms, max, n) = pooled(folds);
     let _ = write!(
@@ -212,7 +216,7 @@ pub fn json(fit: &Fit, folds: Option<&[Fold]>) -> Value {
         let list: Vec<Value> = folds
             .iter()
             .map(|f| {
-                json!({
+                let mut fold = json!({
                     "series": f.series,
                     "points": f.held_out.len(),
                     "mu": f.fit.physics.mu,
@@ -222,7 +226,13 @@ pub fn json(fit: &Fit, folds: Option<&[Fold]>) -> Value {
                     "fit_rms_deg": f.fit.rms_deg,
                     "rms_deg": f.rms_deg,
                     "max_deg": f.max_deg,
-                })
+                });
+                if let (Some(kappa), Some(map)) =
+                    (f.fit.physics.tangential_stiffness, fold.as_object_mut())
+                {
+                    map.insert("tangential_stiffness".to_owned(), json!(kappa));
+                }
+                fold
             })
             .collect();
         map.insert(
