@@ -101,5 +101,14 @@ mod tests {
         assert_eq!(p.radius, None);
         let e = ParamsFile::from_json(r#"{"restituion":0.9}"#).unwrap_err();
         assert!(e.contains("restituion"), "{e}");
+        // The profile intervals are read and ignored.
+        let p = ParamsFile::from_json(
+            r#"{"mu":0.02,"interval95":{"mu":[0.0,0.04]},"intervals":"profile"}"#,
+        )
+        .unwrap();
+        assert_eq!(p.mu, Some(0.02));
+        // A compliant fit (`--fit mu-v-k`) is not silently run as a rigid one.
+        let e = ParamsFile::from_json(r#"{"mu":0.02,"tangential_stiffness":0.1}"#).unwrap_err();
+        assert!(e.contains("tangential_stiffness"), "{e}");
     }
 }
