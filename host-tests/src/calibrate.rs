@@ -33,15 +33,21 @@
 //! * **Cross-validation** (`--cross-validate`): leave one series out (the `series`
 //!   key, the shared file's `speed_label`, or the speed), fit the rest, predict it.
 
+mod cross_validate;
 pub mod fit;
 pub mod input;
+pub mod model;
 pub mod params_file;
+mod problem;
+pub mod profile;
 pub mod report;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-pub use fit::{cross_validate, fit, Fit, FitError, FitKind, FitOptions, Fold, Physics, Solver};
+pub use fit::{
+    cross_validate, fit, Fit, FitError, FitKind, FitOptions, Fold, Intervals, Physics, Solver,
+};
 pub use input::{read_file, InputError, Measurement, Spin};
 pub use params_file::ParamsFile;
 
@@ -53,7 +59,8 @@ pub struct Flags {
     #[arg(long, value_name = "FILE")]
     pub throw: PathBuf,
     /// Parameters to fit: mu (constant μ), mu-v (μ(v) = mu + mu_b·exp(−mu_c·v)), mu-v-e
-    /// (μ(v) and e*).
+    /// (μ(v) and e*), mu-v-k (μ(v) and the contact's tangential compliance
+    /// κ = k_t/k_n; always by the reference solver).
     #[arg(long, value_enum, default_value = "mu-v")]
     pub fit: FitKind,
     /// Model of the throw: kim-grip (the core's tier, f64 evaluation), exact, or
@@ -72,6 +79,10 @@ pub struct Flags {
     /// Also fit each series left out in turn and report how well it is predicted.
     #[arg(long)]
     pub cross_validate: bool,
+    /// 95 % intervals: profile (profile likelihood, follows the curved χ² valley and
+    /// the bounds; one refit per trial value) or linearised (θ̂ ± t·se).
+    #[arg(long, value_enum, default_value = "profile")]
+    pub intervals: Intervals,
     /// Give up after this many model evaluations (one per point and parameter set).
     #[arg(long, value_name = "N", default_value_t = 100_000)]
     pub max_evaluations: usize,
@@ -114,6 +125,11 @@ pub fn options(flags: &Flags) -> Result<FitOptions, CalibrateError> {
     options.default_uncertainty_deg = flags.default_uncertainty;
     options.max_evaluations = flags.max_evaluations;
     options.progress = true;
+    options.intervals = flags.intervals;
+    if flags.fit == FitKind::MuVK {
+        // The compliant contact exists in the reference solver only.
+        options.solver = Solver::Reference;
+    }
     if !(flags.restitution.is_finite() && (0.0..=1.0).contains(&flags.restitution)) {
         return Err(invalid(format!(
             "restitution = {} is outside [0, 1]",

@@ -506,16 +506,17 @@ def calibrate(
 ) -> Dict[str, Any]:
     """Fit the ball–ball friction law to measured throw, as ``cuesight calibrate --json``
     does: the dict of its JSON (the parameters under ``collide``'s names, their
-    ``stderr`` and ``ci95``, ``rms_deg``, ``max_deg``, per-point ``residuals`` and, with
-    ``cross_validate``, ``cross_validation``).
+    ``stderr``, ``ci95`` and ``interval95``, ``rms_deg``, ``max_deg``, per-point
+    ``residuals`` and, with ``cross_validate``, ``cross_validation``).
 
     throw: a file as ``--throw`` reads it (JSON, or CSV with columns ``cut_deg``,
         ``speed_mps``, ``spin``, ``throw_deg``[, ``uncertainty_deg``]), or the points
         themselves: dicts of the JSON point schema of docs/calibration.md
         (``cut_deg``, ``speed_mps``, ``throw_deg``, optional ``spin``, ``spin_rad_s``,
         ``uncertainty_deg``, ``id``, ``series``).
-    fit: ``mu`` (constant μ), ``mu-v`` (μ(v) = mu + mu_b·exp(−mu_c·v)) or ``mu-v-e``
-        (μ(v) and e*).
+    fit: ``mu`` (constant μ), ``mu-v`` (μ(v) = mu + mu_b·exp(−mu_c·v)), ``mu-v-e``
+        (μ(v) and e*) or ``mu-v-k`` (μ(v) and the contact's tangential compliance,
+        always by the reference solver).
     model: the model of the throw: ``kim-grip``, ``exact`` or ``reference`` (slower).
     restitution, mu_s: e* when not fitted (the start value with ``mu-v-e``) and the
         object-ball/table friction.

@@ -6,7 +6,9 @@ use std::path::PathBuf;
 
 use clap::ValueEnum;
 use cuesight_host::calibrate::input::parse_json;
-use cuesight_host::calibrate::{run, run_points, CalibrateError, FitKind, Flags, Solver};
+use cuesight_host::calibrate::{
+    run, run_points, CalibrateError, FitKind, Flags, Intervals, Solver,
+};
 use pyo3::prelude::*;
 
 use crate::value_error;
@@ -87,6 +89,7 @@ pub(crate) fn _calibrate(
             mu_s,
             default_uncertainty,
             cross_validate,
+            intervals: Intervals::Profile,
             max_evaluations,
             json: true,
         };

@@ -206,7 +206,7 @@ def test_empty_list_and_other_python_errors(cli, tmp_path):
         cuesight.calibrate([])
     assert str(raised.value) == "throw list: no points"
     with pytest.raises(ValueError, match=r"^invalid value 'mu-e' for fit \[possible values: "
-                       r"mu, mu-v, mu-v-e\]$"):
+                       r"mu, mu-v, mu-v-e, mu-v-k\]$"):
         cuesight.calibrate([], fit="mu-e")
     with pytest.raises(ValueError, match=r"^invalid value 'kim' for model \[possible values: "
                        r"kim-grip, exact, reference\]$"):

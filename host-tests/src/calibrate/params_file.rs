@@ -3,7 +3,7 @@
 //!
 //! Keys (all optional, the names `collide` and the device's `params` request take):
 //! `mu`, `mu_b`, `mu_c`, `restitution`, `mu_s`, `radius`, `mass`. The other keys that
-//! `calibrate --json` prints (`fit`, `model`, `stderr`, `ci95`, `rms_deg`, `max_deg`,
+//! `calibrate --json` prints (`fit`, `model`, `stderr`, `ci95`, `interval95`, `intervals`, `rms_deg`, `max_deg`,
 //! `points`, `above_ceiling`, `residuals`, `cross_validation`) are accepted and ignored;
 //! any other key is an error, so a misspelt parameter is not silently dropped. A flag
 //! given on the command line overrides the file's value.
@@ -42,6 +42,10 @@ pub struct ParamsFile {
     _stderr: Option<IgnoredAny>,
     #[serde(default, rename = "ci95")]
     _ci95: Option<IgnoredAny>,
+    #[serde(default, rename = "interval95")]
+    _interval: Option<IgnoredAny>,
+    #[serde(default, rename = "intervals")]
+    _intervals: Option<IgnoredAny>,
     #[serde(default, rename = "rms_deg")]
     _rms: Option<IgnoredAny>,
     #[serde(default, rename = "max_deg")]
@@ -97,5 +101,14 @@ mod tests {
         assert_eq!(p.radius, None);
         let e = ParamsFile::from_json(r#"{"restituion":0.9}"#).unwrap_err();
         assert!(e.contains("restituion"), "{e}");
+        // The profile intervals are read and ignored.
+        let p = ParamsFile::from_json(
+            r#"{"mu":0.02,"interval95":{"mu":[0.0,0.04]},"intervals":"profile"}"#,
+        )
+        .unwrap();
+        assert_eq!(p.mu, Some(0.02));
+        // A compliant fit (`--fit mu-v-k`) is not silently run as a rigid one.
+        let e = ParamsFile::from_json(r#"{"mu":0.02,"tangential_stiffness":0.1}"#).unwrap_err();
+        assert!(e.contains("tangential_stiffness"), "{e}");
     }
 }

@@ -4,17 +4,18 @@ use std::fmt::Write as _;
 
 use serde_json::{json, Map, Value};
 
-use super::fit::{Fit, Fold};
+use super::fit::{Estimate, Fit, Fold};
 
-fn parameter_line(out: &mut String, name: &str, value: f64, stderr: Option<(f64, f64)>) {
+fn parameter_line(out: &mut String, name: &str, value: f64, estimate: Option<&Estimate>) {
     let unit = match name {
         "mu_c" => " s/m",
         _ => "",
     };
-    let _ = match stderr {
-        Some((se, ci)) => writeln!(
+    let _ = match estimate {
+        Some(e) => writeln!(
             out,
-            "  {name:<12} = {value:>10.5}{unit} ± {ci:.5} (95 %; standard error {se:.5})"
+            "  {name:<12} = {value:>10.5}{unit}  95 % interval [{:.5}, {:.5}]  (standard error {:.5}, linearised ± {:.5})",
+            e.lower, e.upper, e.stderr, e.ci95
         ),
         None => writeln!(out, "  {name:<12} = {value:>10.5}{unit} (fixed)"),
     };
@@ -40,19 +41,18 @@ pub fn text(fit: &Fit, source: &str) -> String {
     );
     let fitted = |name: &str| fit.estimates.iter().find(|e| e.name == name);
     let ph = fit.physics;
+    let compliance = ph.tangential_stiffness.map(|k| ("tangential_stiffness", k));
     for (name, value) in [
         ("mu", ph.mu),
         ("mu_b", ph.mu_b),
         ("mu_c", ph.mu_c),
         ("restitution", ph.restitution),
         ("mu_s", ph.mu_s),
-    ] {
-        parameter_line(
-            &mut out,
-            name,
-            value,
-            fitted(name).map(|e| (e.stderr, e.ci95)),
-        );
+    ]
+    .into_iter()
+    .chain(compliance)
+    {
+        parameter_line(&mut out, name, value, fitted(name));
     }
     let (max, at) = fit.max_deg;
     let _ = writeln!(
@@ -137,6 +137,10 @@ pub fn cross_validation_text(folds: &[Fold]) -> String {
             f.rms_deg,
             f.max_deg
         );
+        if let Some(kappa) = p.tangential_stiffness {
+            out.pop();
+            let _ = writeln!(out, "  (kappa {kappa:.4})");
+        }
     }
     let (rms, max, n) = pooled(folds);
     let _ = write!(
@@ -164,9 +168,11 @@ pub fn json(fit: &Fit, folds: Option<&[Fold]>) -> Value {
     let ph = fit.physics;
     let mut stderr = Map::new();
     let mut ci95 = Map::new();
+    let mut interval = Map::new();
     for e in &fit.estimates {
         stderr.insert(e.name.to_owned(), json!(e.stderr));
         ci95.insert(e.name.to_owned(), json!(e.ci95));
+        interval.insert(e.name.to_owned(), json!([e.lower, e.upper]));
     }
     let residuals: Vec<Value> = fit
         .points
@@ -193,18 +199,24 @@ pub fn json(fit: &Fit, folds: Option<&[Fold]>) -> Value {
         "model": fit.solver.name(),
         "stderr": stderr,
         "ci95": ci95,
+        "interval95": interval,
+        "intervals": fit.intervals.name(),
         "rms_deg": fit.rms_deg,
         "max_deg": fit.max_deg.0,
         "points": fit.points.len(),
         "above_ceiling": fit.above_ceiling(),
         "residuals": residuals,
     });
+    if let (Some(kappa), Some(map)) = (ph.tangential_stiffness, v.as_object_mut()) {
+        // Not a `--params` key: `collide` and `shot` have no compliant contact.
+        map.insert("tangential_stiffness".to_owned(), json!(kappa));
+    }
     if let (Some(folds), Some(map)) = (folds, v.as_object_mut()) {
         let (rms, max, n) = pooled(folds);
         let list: Vec<Value> = folds
             .iter()
             .map(|f| {
-                json!({
+                let mut fold = json!({
                     "series": f.series,
                     "points": f.held_out.len(),
                     "mu": f.fit.physics.mu,
@@ -214,7 +226,13 @@ pub fn json(fit: &Fit, folds: Option<&[Fold]>) -> Value {
                     "fit_rms_deg": f.fit.rms_deg,
                     "rms_deg": f.rms_deg,
                     "max_deg": f.max_deg,
-                })
+                });
+                if let (Some(kappa), Some(map)) =
+                    (f.fit.physics.tangential_stiffness, fold.as_object_mut())
+                {
+                    map.insert("tangential_stiffness".to_owned(), json!(kappa));
+                }
+                fold
             })
             .collect();
         map.insert(
