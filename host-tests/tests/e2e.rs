@@ -49,13 +49,14 @@ use std::time::{Duration, Instant};
 use cuesight_host::firmware::{self, cobs_frame, open_answer, Answer, Firmware, Incoming};
 use cuesight_host::grid;
 use cuesight_host::strokes::{stroke_chunks, synthetic_stroke, synthetic_stroke_of};
-use cuesight_link::error::{FrameFault, GlitchName, SequenceFault};
+use cuesight_link::error::{FrameFault, SequenceFault};
 use cuesight_link::frame::{self, FrameReader, MAX_FRAME, MAX_RAW};
 use cuesight_link::{
     Collide, Empty, Identity, LinkError, ModelName, Overrides, Request, Response, Session,
     StrokeChunk, StrokeSetup, UploadFault, MAX_CHUNKS, MAX_SAMPLES, SCHEMA_HASH, STROKE_CAPACITY,
     UNPROMPTED,
 };
+use cuesight_sensors::GlitchKind;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -575,7 +576,7 @@ impl Device {
 
     /// The seq the device expects next.
     fn next_seq(&self) -> u16 {
-        self.last.map_or(0, |last| last.wrapping_add(1))
+        self.last.map_or(0, following)
     }
 
     /// The device's sequence check on a (non-`version`) frame `seq`, as the link
@@ -585,7 +586,7 @@ impl Device {
             self.last = Some(seq);
             return None;
         };
-        let expected = last.wrapping_add(1);
+        let expected = following(last);
         if seq == expected {
             self.last = Some(seq);
             None
@@ -1164,7 +1165,7 @@ impl Device {
                     stroke,
                     chunk: chunk_of,
                     sample: sample_of,
-                    kind: GlitchName::Rail,
+                    kind: GlitchKind::Rail,
                     value: i16::MIN,
                 }))
             } else {
@@ -1578,4 +1579,14 @@ fn firmware_in_qemu_answers_as_the_host_session_and_survives_hostile_frames() {
         }
     }
     assert!(problems.is_empty(), "e2e: {}", problems.join("; "));
+}
+
+/// The number after `seq`, as docs/protocol.md §4 documents it: hosts count 0 … 0xFFFE and
+/// wrap to 0 (0xFFFF numbers the device's unprompted frames; a request never carries it).
+fn following(seq: u16) -> u16 {
+    if seq >= 0xFFFE {
+        0
+    } else {
+        seq + 1
+    }
 }

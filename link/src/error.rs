@@ -7,7 +7,7 @@
 use core::fmt;
 
 use cuesight::aim::AimError;
-use cuesight_sensors::{ConfigField, StrokeError};
+use cuesight_sensors::{GlitchKind, StrokeError};
 use serde::{Deserialize, Serialize};
 
 /// Why a request got no answer but this one.
@@ -38,8 +38,10 @@ pub enum LinkError {
     Unsupported(Unsupported),
     /// `shot`: no aim pockets the ball.
     NoAim(NoAim),
-    /// The stroke's samples hold no usable stroke.
-    Stroke(StrokeRejected),
+    /// The stroke's samples hold no usable stroke, or the strike model refused the
+    /// estimate (the estimator's own error; sample indices count from the stroke's first
+    /// sample, all chunks).
+    Stroke(StrokeError),
     /// A stroke chunk that breaks the upload (the stroke in progress is dropped).
     Upload(UploadFault),
     /// The answer did not fit a frame (a bug: sizes are tested).
@@ -60,7 +62,7 @@ impl fmt::Display for LinkError {
             LinkError::MissingAim => f.write_str("shot: neither aim nor pocket given"),
             LinkError::Unsupported(what) => write!(f, "unsupported: {what:?}"),
             LinkError::NoAim(why) => write!(f, "no aim: {why:?}"),
-            LinkError::Stroke(why) => write!(f, "stroke rejected: {why:?}"),
+            LinkError::Stroke(why) => write!(f, "stroke rejected: {why}"),
             LinkError::Upload(fault) => write!(f, "stroke upload dropped: {fault:?}"),
             LinkError::AnswerTooLarge => f.write_str("the answer did not fit a frame"),
         }
@@ -187,63 +189,9 @@ impl From<cuesight::Error> for LinkError {
     }
 }
 
-/// Why the stroke estimator found no stroke (`cuesight_sensors::StrokeError`; sample
-/// indices count from the stroke's first sample, all chunks).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
-#[serde(rename_all = "snake_case")]
-pub enum StrokeRejected {
-    /// `rate_hz` outside [500, 100000] Hz.
-    RateOutOfRange,
-    /// `scale` makes the full scale no larger than the impact threshold.
-    ScaleTooSmall,
-    /// Fewer samples than the rest window and the detectors need.
-    TooShort {
-        /// Samples given.
-        samples: u32,
-        /// Samples needed at this rate.
-        needed: u32,
-    },
-    /// `scale` is not a finite, non-zero number.
-    BadScale,
-    /// No rest of 150 ms before the impact (the capture must start with the cue still).
-    NotAtRest,
-    /// No impact-sized deceleration after the rest.
-    NoImpact,
-    /// A sample between the rest and the impact is at the sensor's full scale.
-    Saturated {
-        /// The sample.
-        index: u32,
-    },
-    /// The integrated speed at impact is not forward (wrong axis sign, or no stroke).
-    NotForward {
-        /// The integrated speed (m/s).
-        speed: f32,
-    },
-}
-
 impl From<StrokeError> for LinkError {
     fn from(error: StrokeError) -> Self {
-        let rejected = match error {
-            StrokeError::InvalidConfig(ConfigField::SampleRate) => StrokeRejected::RateOutOfRange,
-            StrokeError::InvalidConfig(_) => StrokeRejected::ScaleTooSmall,
-            StrokeError::TooShort { len, min } => StrokeRejected::TooShort {
-                samples: len as u32,
-                needed: min as u32,
-            },
-            StrokeError::NotFinite { .. } | StrokeError::LengthMismatch { .. } => {
-                StrokeRejected::BadScale
-            }
-            StrokeError::NotAtRest => StrokeRejected::NotAtRest,
-            StrokeError::NoImpact => StrokeRejected::NoImpact,
-            StrokeError::Saturated { index } => StrokeRejected::Saturated {
-                index: index as u32,
-            },
-            StrokeError::NotForward { speed } => StrokeRejected::NotForward { speed },
-            StrokeError::Strike(error) => return LinkError::Invalid(error),
-        };
-        LinkError::Stroke(rejected)
+        LinkError::Stroke(error)
     }
 }
 
@@ -324,20 +272,8 @@ pub enum UploadFault {
         /// Its index in that chunk.
         sample: u16,
         /// Rail or spike.
-        kind: GlitchName,
+        kind: GlitchKind,
         /// Its raw value.
         value: i16,
     },
-}
-
-/// What kind of glitch (`cuesight_sensors::GlitchKind`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
-#[serde(rename_all = "snake_case")]
-pub enum GlitchName {
-    /// The raw word is at the sensor's rail (−32768 or 32767).
-    Rail,
-    /// One sample far from both neighbours, which agree with each other.
-    Spike,
 }

@@ -4,12 +4,10 @@
 
 use cuesight::strike::TipOffset;
 use cuesight::Params;
-use cuesight_sensors::{
-    estimate_raw, find_glitch, GlitchKind, StrokeConfig, StrokeError, ACCEL_MPS2_PER_LSB,
-};
+use cuesight_sensors::{estimate_raw, find_glitch, StrokeConfig, ACCEL_MPS2_PER_LSB};
 use heapless::Vec;
 
-use crate::error::{GlitchName, LinkError, UploadFault};
+use crate::error::{LinkError, UploadFault};
 use crate::limits::{MAX_CHUNKS, STROKE_CAPACITY};
 use crate::request::{cue, StrokeChunk, StrokeSetup};
 use crate::response::{plain, StrokeAnswer, StrokeProgress};
@@ -141,10 +139,7 @@ impl Upload {
                 stroke: self.stroke,
                 chunk,
                 sample,
-                kind: match glitch.kind {
-                    GlitchKind::Rail => GlitchName::Rail,
-                    GlitchKind::Spike => GlitchName::Spike,
-                },
+                kind: glitch.kind,
                 value: glitch.value,
             }));
         }
@@ -155,12 +150,7 @@ impl Upload {
         // A raw word saturates at ±32768: the full scale follows the scale.
         config.full_scale = 32768.0 * if scale < 0.0 { -scale } else { scale };
         let estimate = estimate_raw(&self.samples, scale, &config)?;
-        let hit = estimate
-            .strike(params, &cue, tip)
-            .map_err(|error| match error {
-                StrokeError::Strike(error) => LinkError::Invalid(error),
-                other => LinkError::from(other),
-            })?;
+        let hit = estimate.strike(params, &cue, tip)?;
         Ok(StrokeAnswer {
             stroke: self.stroke,
             cue_speed: estimate.cue_speed,

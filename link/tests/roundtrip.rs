@@ -21,9 +21,7 @@ use std::collections::BTreeSet;
 use std::fmt::Debug;
 
 use cuesight::{Error as CoreError, Field};
-use cuesight_link::error::{
-    FrameFault, GlitchName, NoAim, SequenceFault, StrokeRejected, Unsupported,
-};
+use cuesight_link::error::{FrameFault, NoAim, SequenceFault, Unsupported};
 use cuesight_link::frame::{self, FrameReader, Received, MAX_FRAME, MAX_RAW};
 use cuesight_link::names::{EndName, ModelName, RegimeName, ShotMode, TableName};
 use cuesight_link::response::{
@@ -35,6 +33,7 @@ use cuesight_link::{
     ShotRequest, StrokeAnswer, StrokeChunk, StrokeSetup, UploadFault, VersionAnswer,
     MAX_OBJECT_BALLS, MAX_SAMPLES, SCHEMA_HASH,
 };
+use cuesight_sensors::{ConfigField, GlitchKind, StrokeError};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 use serde::de::DeserializeOwned;
@@ -650,16 +649,19 @@ fn sequence_faults() -> BoxedStrategy<SequenceFault> {
     .boxed()
 }
 
-fn stroke_rejections() -> BoxedStrategy<StrokeRejected> {
+fn stroke_errors() -> BoxedStrategy<StrokeError> {
+    let counts = u32s;
     prop_oneof![
-        Just(StrokeRejected::RateOutOfRange),
-        Just(StrokeRejected::ScaleTooSmall),
-        (u32s(), u32s()).prop_map(|(samples, needed)| StrokeRejected::TooShort { samples, needed }),
-        Just(StrokeRejected::BadScale),
-        Just(StrokeRejected::NotAtRest),
-        Just(StrokeRejected::NoImpact),
-        u32s().prop_map(|index| StrokeRejected::Saturated { index }),
-        f32s().prop_map(|speed| StrokeRejected::NotForward { speed }),
+        units::<ConfigField>().prop_map(StrokeError::InvalidConfig),
+        (counts(), counts()).prop_map(|(len, min)| StrokeError::TooShort { len, min }),
+        counts().prop_map(|index| StrokeError::NotFinite { index }),
+        Just(StrokeError::NotAtRest),
+        Just(StrokeError::NoImpact),
+        counts().prop_map(|index| StrokeError::Saturated { index }),
+        f32s().prop_map(|speed| StrokeError::NotForward { speed }),
+        (counts(), counts())
+            .prop_map(|(accel, pitch)| StrokeError::LengthMismatch { accel, pitch }),
+        core_errors().prop_map(StrokeError::Strike),
     ]
     .boxed()
 }
@@ -684,7 +686,7 @@ fn upload_faults() -> BoxedStrategy<UploadFault> {
         (u16s(), u16s()).prop_map(|(stroke, chunk)| UploadFault::Empty { stroke, chunk }),
         (u16s(), u16s()).prop_map(|(stroke, chunk)| UploadFault::Overflow { stroke, chunk }),
         u16s().prop_map(|stroke| UploadFault::NoSetup { stroke }),
-        (u16s(), u16s(), u16s(), units::<GlitchName>(), i16s()).prop_map(
+        (u16s(), u16s(), u16s(), units::<GlitchKind>(), i16s()).prop_map(
             |(stroke, chunk, sample, kind, value)| UploadFault::Glitch {
                 stroke,
                 chunk,
@@ -707,7 +709,7 @@ fn link_errors() -> BoxedStrategy<LinkError> {
         1 => Just(LinkError::MissingAim),
         1 => units::<Unsupported>().prop_map(LinkError::Unsupported),
         1 => units::<NoAim>().prop_map(LinkError::NoAim),
-        1 => stroke_rejections().prop_map(LinkError::Stroke),
+        1 => stroke_errors().prop_map(LinkError::Stroke),
         1 => upload_faults().prop_map(LinkError::Upload),
         1 => Just(LinkError::AnswerTooLarge),
     ]
@@ -1136,9 +1138,10 @@ fn schema_enums() -> BTreeSet<(&'static str, &'static str)> {
         probe::variants::<SequenceFault>(),
         probe::variants::<Unsupported>(),
         probe::variants::<NoAim>(),
-        probe::variants::<StrokeRejected>(),
+        probe::variants::<StrokeError>(),
+        probe::variants::<ConfigField>(),
         probe::variants::<UploadFault>(),
-        probe::variants::<GlitchName>(),
+        probe::variants::<GlitchKind>(),
         probe::variants::<CoreError>(),
         probe::variants::<Field>(),
         probe::variants::<ModelName>(),

@@ -11,7 +11,7 @@
 //! ([`FrameReader`], [`frame::open`], [`frame::decode`]), and its schema, sequence
 //! number and the `Served` report are checked against it.
 
-use cuesight_link::error::{FrameFault, GlitchName, SequenceFault};
+use cuesight_link::error::{FrameFault, SequenceFault};
 use cuesight_link::frame::{self, FrameReader, Received, MAX_FRAME, MAX_RAW};
 use cuesight_link::response::ParamsAnswer;
 use cuesight_link::{
@@ -19,6 +19,7 @@ use cuesight_link::{
     StrokeAnswer, StrokeChunk, StrokeSetup, UploadFault, MAX_CHUNKS, MAX_SAMPLES, SCHEMA_HASH,
     STROKE_CAPACITY, UNPROMPTED,
 };
+use cuesight_sensors::GlitchKind;
 
 const IDENTITY: Identity = Identity {
     firmware: "session-test 1",
@@ -962,10 +963,10 @@ fn a_glitch_sample_names_its_chunk_and_sample() {
     // At the rail in the rest window (samples 0..400: the first chunk and a later one),
     // and a one-sample spike there.
     for (index, value, kind) in [
-        (100usize, i16::MIN, GlitchName::Rail),
-        (300, i16::MIN, GlitchName::Rail),
-        (300, i16::MAX, GlitchName::Rail),
-        (150, samples[150].saturating_add(8_000), GlitchName::Spike),
+        (100usize, i16::MIN, GlitchKind::Rail),
+        (300, i16::MIN, GlitchKind::Rail),
+        (300, i16::MAX, GlitchKind::Rail),
+        (150, samples[150].saturating_add(8_000), GlitchKind::Spike),
     ] {
         let mut glitched = samples.clone();
         glitched[index] = value;

@@ -125,6 +125,8 @@ use crate::lsm6dsox::STANDARD_GRAVITY;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub enum GlitchKind {
     /// The word is `i16::MIN` or `i16::MAX`, before the impact.
     Rail,

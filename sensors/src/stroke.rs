@@ -160,6 +160,8 @@ struct Plan {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub enum ConfigField {
     /// `sample_rate_hz` not in `[500, 100 000]`.
     SampleRate,
@@ -221,25 +223,29 @@ impl fmt::Display for ConfigField {
     }
 }
 
-/// Why no cue speed could be estimated.
+/// Why no cue speed could be estimated. Counts and sample indices are `u32` (the device's
+/// word; a fixed width on the link, where the device sends this error as it is), saturated
+/// at `u32::MAX` for a window longer than that.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub enum StrokeError {
     /// A configuration value is out of range.
     InvalidConfig(ConfigField),
     /// Fewer samples than the rest window and the detectors need.
     TooShort {
         /// Samples given.
-        len: usize,
+        len: u32,
         /// Samples needed at this rate.
-        min: usize,
+        min: u32,
     },
     /// A sample is NaN or infinite; from the raw estimators also a scale that is not a
     /// finite, non-zero number (reported as index 0).
     NotFinite {
         /// Its index.
-        index: usize,
+        index: u32,
     },
     /// No rest of `min_rest` before an impact: the capture did not start with the cue
     /// held still. Also when the rest's level or spread is not representable in f32
@@ -250,7 +256,7 @@ pub enum StrokeError {
     /// A sample between the rest and the impact reached the sensor's full scale.
     Saturated {
         /// Its index.
-        index: usize,
+        index: u32,
     },
     /// The integrated speed at impact is not positive (wrong axis sign, or no stroke).
     NotForward {
@@ -260,9 +266,9 @@ pub enum StrokeError {
     /// The pitch-rate series is not as long as the acceleration series.
     LengthMismatch {
         /// Acceleration samples.
-        accel: usize,
+        accel: u32,
         /// Pitch-rate samples.
-        pitch: usize,
+        pitch: u32,
     },
     /// The strike model refused the estimate (e.g. above its 20 m/s range).
     Strike(cuesight::Error),
@@ -425,8 +431,8 @@ pub fn estimate_with_pitch(
 ) -> Result<StrokeEstimate, StrokeError> {
     if pitch_rate.len() != accel.len() {
         return Err(StrokeError::LengthMismatch {
-            accel: accel.len(),
-            pitch: pitch_rate.len(),
+            accel: saturated_u32(accel.len()),
+            pitch: saturated_u32(pitch_rate.len()),
         });
     }
     run(
@@ -453,8 +459,8 @@ pub fn estimate_raw_with_pitch(
     }
     if pitch.len() != accel.len() {
         return Err(StrokeError::LengthMismatch {
-            accel: accel.len(),
-            pitch: pitch.len(),
+            accel: saturated_u32(accel.len()),
+            pitch: saturated_u32(pitch.len()),
         });
     }
     run(
@@ -500,6 +506,11 @@ impl Sum {
     }
 }
 
+/// A length or index as [`StrokeError`] carries it (saturated at `u32::MAX`).
+fn saturated_u32(n: usize) -> u32 {
+    u32::try_from(n).unwrap_or(u32::MAX)
+}
+
 /// Mean and standard deviation of `at(start..end)` (two passes; `end > start`).
 fn mean_std(at: &impl Fn(usize) -> f32, start: usize, end: usize) -> (f32, f32) {
     let count = (end - start) as f32;
@@ -526,14 +537,21 @@ fn run<P: Fn(usize) -> f32>(
     let (b, w) = (plan.block, plan.window);
     let min = b * plan.rest_blocks + w + 8;
     if n < min {
-        return Err(StrokeError::TooShort { len: n, min });
+        return Err(StrokeError::TooShort {
+            len: saturated_u32(n),
+            min: saturated_u32(min),
+        });
     }
     if let Some(index) = (0..n).find(|&i| !cuesight::math::is_finite(at(i))) {
-        return Err(StrokeError::NotFinite { index });
+        return Err(StrokeError::NotFinite {
+            index: saturated_u32(index),
+        });
     }
     if let Some(p) = &pitch {
         if let Some(index) = (0..n).find(|&i| !cuesight::math::is_finite(p(i))) {
-            return Err(StrokeError::NotFinite { index });
+            return Err(StrokeError::NotFinite {
+                index: saturated_u32(index),
+            });
         }
     }
     let coarse_impact = -config.impact_threshold;
@@ -682,7 +700,9 @@ fn run<P: Fn(usize) -> f32>(
     for i in rest_end..onset {
         let a = at(i);
         if cuesight::math::abs(a) >= rail {
-            return Err(StrokeError::Saturated { index: i });
+            return Err(StrokeError::Saturated {
+                index: saturated_u32(i),
+            });
         }
         let mut correction = 0.0;
         if let (Some(p), Some(bias)) = (&pitch, gyro_bias) {
@@ -696,7 +716,9 @@ fn run<P: Fn(usize) -> f32>(
     }
     let cue_speed = velocity.value() * plan.dt;
     if !cuesight::math::is_finite(cue_speed) {
-        return Err(StrokeError::NotFinite { index: onset });
+        return Err(StrokeError::NotFinite {
+            index: saturated_u32(onset),
+        });
     }
     if cue_speed <= 0.0 {
         return Err(StrokeError::NotForward { speed: cue_speed });
@@ -966,8 +988,8 @@ mod tests {
         assert_eq!(
             estimate_with_pitch(&accel, &pitch[1..], &cfg),
             Err(StrokeError::LengthMismatch {
-                accel: accel.len(),
-                pitch: accel.len() - 1
+                accel: accel.len() as u32,
+                pitch: accel.len() as u32 - 1
             })
         );
         pitch[77] = f32::INFINITY;

@@ -586,16 +586,16 @@ fn window_lengths_zero_one_and_around_the_minimum() {
             };
             for len in [1, min - 1] {
                 assert_eq!(
-                    estimate(&vec![0.0; len], &config),
+                    estimate(&vec![0.0; len as usize], &config),
                     Err(StrokeError::TooShort { len, min })
                 );
                 assert_eq!(
-                    estimate_raw(&vec![0; len], ACCEL_MPS2_PER_LSB, &config),
+                    estimate_raw(&vec![0; len as usize], ACCEL_MPS2_PER_LSB, &config),
                     Err(StrokeError::TooShort { len, min })
                 );
             }
             assert_eq!(
-                estimate(&vec![0.0; min], &config),
+                estimate(&vec![0.0; min as usize], &config),
                 Err(StrokeError::NoImpact)
             );
             let rest = f64::from(min_rest).max(3.0 * 0.025);
@@ -675,7 +675,11 @@ fn clipped_accelerometer_words_at_the_rail() {
         raw[at] = word;
         let got = estimate_raw(&raw, ACCEL_MPS2_PER_LSB, &config);
         if saturated {
-            assert_eq!(got, Err(StrokeError::Saturated { index: at }), "{word}");
+            assert_eq!(
+                got,
+                Err(StrokeError::Saturated { index: at as u32 }),
+                "{word}"
+            );
         } else {
             let e = got.unwrap();
             check_estimate(&e, raw.len(), FS, false).unwrap();
@@ -777,7 +781,11 @@ fn full_scale_at_its_smallest_and_largest() {
             samples[at] = value;
             let got = estimate(&samples, &config);
             if saturated {
-                assert_eq!(got, Err(StrokeError::Saturated { index: at }), "{value}");
+                assert_eq!(
+                    got,
+                    Err(StrokeError::Saturated { index: at as u32 }),
+                    "{value}"
+                );
             } else {
                 check_estimate(&got.unwrap(), samples.len(), FS, false).unwrap();
             }
@@ -789,7 +797,7 @@ fn full_scale_at_its_smallest_and_largest() {
         if -rail < -config.impact_threshold {
             assert_eq!(got.unwrap().impact_index, at);
         } else {
-            assert_eq!(got, Err(StrokeError::Saturated { index: at }));
+            assert_eq!(got, Err(StrokeError::Saturated { index: at as u32 }));
         }
     }
     let infinite = StrokeConfig {
@@ -942,7 +950,9 @@ fn non_finite_samples_at_the_ends() {
         for index in [0, n / 2, n - 1] {
             let mut a = s.samples.clone();
             a[index] = bad;
-            let want = Err(StrokeError::NotFinite { index });
+            let want = Err(StrokeError::NotFinite {
+                index: index as u32,
+            });
             assert_eq!(estimate(&a, &config), want);
             assert_eq!(estimate_with_pitch(&a, &pitch, &config), want);
             let mut p = pitch.clone();

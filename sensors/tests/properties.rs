@@ -680,7 +680,11 @@ fn check_answer(
     let c = &w.config;
     match got {
         Err(StrokeError::TooShort { len, min: m }) => {
-            prop_assert!(*len == n && *m == min && n < min, "{:?}", got)
+            prop_assert!(
+                *len as usize == n && *m as usize == min && n < min,
+                "{:?}",
+                got
+            )
         }
         _ if n < min => return Err(fail(format!("{n} < {min} samples not TooShort: {got:?}"))),
         Err(StrokeError::NotForward { speed }) => {
@@ -689,7 +693,8 @@ fn check_answer(
         Err(StrokeError::NotAtRest | StrokeError::NoImpact) => {}
         Err(StrokeError::Saturated { index }) => {
             let rail = 0.999 * c.full_scale;
-            prop_assert!(*index < n && samples[*index].abs() >= rail, "{:?}", got);
+            let index = *index as usize;
+            prop_assert!(index < n && samples[index].abs() >= rail, "{:?}", got);
         }
         Err(e) => return Err(fail(format!("a valid input refused: {e:?}"))),
         Ok(e) => {
@@ -782,9 +787,9 @@ fn estimator_answers_any_window_within_its_contract() {
         let samples = w.samples();
         let mut out = outcomes.borrow_mut();
         let plain = estimate_raw(&w.accel, w.scale, &w.config);
-        check_answer(&w, &samples, &plain, min, false, &mut out[0])?;
+        check_answer(&w, &samples, &plain, min as usize, false, &mut out[0])?;
         let aided = estimate_raw_with_pitch(&w.accel, w.scale, &w.pitch, w.pitch_scale, &w.config);
-        check_answer(&w, &samples, &aided, min, true, &mut out[1])?;
+        check_answer(&w, &samples, &aided, min as usize, true, &mut out[1])?;
         // The pitch series changes the speed only: the rest and the impact are the
         // accelerometer's.
         if let (Ok(a), Ok(b)) = (&plain, &aided) {

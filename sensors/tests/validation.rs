@@ -566,15 +566,15 @@ fn input_rows() -> Vec<Row> {
     let e = |r: Result<StrokeEstimate, StrokeError>| r.map(drop).map_err(Refusal::Stroke);
     let stroke_err = Refusal::Stroke;
 
-    for len in [0usize, 1, min - 1] {
-        let s = vec![0.0f32; len];
+    for len in [0u32, 1, min - 1] {
+        let s = vec![0.0f32; len as usize];
         rows.push(row(
             format!("estimate, {len} samples"),
             move || e(estimate(&s, &config)),
             stroke_err(StrokeError::TooShort { len, min }),
             &[&format!("{len} samples"), &min.to_string(), "too short"],
         ));
-        let r = vec![0i16; len];
+        let r = vec![0i16; len as usize];
         rows.push(row(
             format!("estimate_raw, {len} samples"),
             move || e(estimate_raw(&r, ACCEL_MPS2_PER_LSB, &config)),
@@ -589,7 +589,9 @@ fn input_rows() -> Vec<Row> {
             rows.push(row(
                 format!("estimate, sample {index} = {bad}"),
                 move || e(estimate(&s, &config)),
-                stroke_err(StrokeError::NotFinite { index }),
+                stroke_err(StrokeError::NotFinite {
+                    index: index as u32,
+                }),
                 &[&format!("sample {index}"), "finite"],
             ));
             let mut p = vec![0.0f32; n];
@@ -598,7 +600,9 @@ fn input_rows() -> Vec<Row> {
             rows.push(row(
                 format!("estimate_with_pitch, pitch {index} = {bad}"),
                 move || e(estimate_with_pitch(&s, &p, &config)),
-                stroke_err(StrokeError::NotFinite { index }),
+                stroke_err(StrokeError::NotFinite {
+                    index: index as u32,
+                }),
                 &[&format!("sample {index}"), "finite"],
             ));
         }
@@ -650,7 +654,10 @@ fn input_rows() -> Vec<Row> {
         rows.push(row(
             format!("estimate_with_pitch, {accel} vs {pitch} samples"),
             move || e(estimate_with_pitch(&a, &p, &config)),
-            stroke_err(StrokeError::LengthMismatch { accel, pitch }),
+            stroke_err(StrokeError::LengthMismatch {
+                accel: accel as u32,
+                pitch: pitch as u32,
+            }),
             &needles,
         ));
         rows.push(row(
@@ -664,7 +671,10 @@ fn input_rows() -> Vec<Row> {
                     &config,
                 ))
             },
-            stroke_err(StrokeError::LengthMismatch { accel, pitch }),
+            stroke_err(StrokeError::LengthMismatch {
+                accel: accel as u32,
+                pitch: pitch as u32,
+            }),
             &needles,
         ));
     }

@@ -5,13 +5,12 @@
 
 use std::fmt;
 
-use cuesight_link::error::{
-    FrameFault, GlitchName, NoAim, SequenceFault, StrokeRejected, Unsupported,
-};
+use cuesight_link::error::{FrameFault, NoAim, SequenceFault, Unsupported};
 use cuesight_link::frame::MAX_FRAME;
 use cuesight_link::names::{EndName, ShotMode};
 use cuesight_link::shot::BallPart;
 use cuesight_link::{LinkError, Response, UploadFault, MAX_CHUNKS, STROKE_CAPACITY};
+use cuesight_sensors::{ConfigField, GlitchKind, StrokeError};
 
 use crate::report::Friction;
 
@@ -299,34 +298,41 @@ fn sequence_fault(f: &mut fmt::Formatter<'_>, fault: &SequenceFault) -> fmt::Res
     }
 }
 
-fn stroke_rejected(f: &mut fmt::Formatter<'_>, rejected: &StrokeRejected) -> fmt::Result {
+/// The estimator's error, in the words of the `stroke` request (its `rate_hz` and
+/// `scale`, sample indices over all chunks).
+fn stroke_rejected(f: &mut fmt::Formatter<'_>, rejected: &StrokeError) -> fmt::Result {
     match rejected {
-        StrokeRejected::RateOutOfRange => {
+        StrokeError::InvalidConfig(ConfigField::SampleRate) => {
             f.write_str("stroke: rate_hz is outside [500, 100000] Hz")
         }
-        StrokeRejected::ScaleTooSmall => f.write_str(
+        StrokeError::InvalidConfig(ConfigField::FullScale) => f.write_str(
             "stroke: scale makes the full scale (32768 |scale| m/s2) no larger than the impact threshold",
         ),
-        StrokeRejected::TooShort { samples, needed } => write!(
+        StrokeError::InvalidConfig(_) => write!(f, "stroke: {rejected} (a device default; a firmware bug, please report it)"),
+        StrokeError::TooShort { len, min } => write!(
             f,
-            "stroke: {samples} samples, {needed} needed at this rate (150 ms of rest, then the stroke and the impact)"
+            "stroke: {len} samples, {min} needed at this rate (150 ms of rest, then the stroke and the impact)"
         ),
-        StrokeRejected::BadScale => {
+        StrokeError::NotFinite { .. } | StrokeError::LengthMismatch { .. } => {
             f.write_str("stroke: scale must be a finite, non-zero number (m/s2 per LSB)")
         }
-        StrokeRejected::NotAtRest => f.write_str(
+        StrokeError::NotAtRest => f.write_str(
             "stroke: no 150 ms rest before the impact (the capture must start with the cue still)",
         ),
-        StrokeRejected::NoImpact => {
+        StrokeError::NoImpact => {
             f.write_str("stroke: no impact-sized deceleration after the rest")
         }
-        StrokeRejected::Saturated { index } => write!(
+        StrokeError::Saturated { index } => write!(
             f,
             "stroke: sample {index} (counted over all chunks), between the rest and the impact, is at the sensor's full scale"
         ),
-        StrokeRejected::NotForward { speed } => write!(
+        StrokeError::NotForward { speed } => write!(
             f,
             "stroke: the integrated speed at the impact is {speed:.3} m/s, not forward (wrong axis sign, or no stroke)"
+        ),
+        StrokeError::Strike(error) => write!(
+            f,
+            "stroke: the strike model refused the estimated stroke: {error}"
         ),
     }
 }
@@ -381,11 +387,11 @@ fn upload_fault(f: &mut fmt::Formatter<'_>, fault: &UploadFault) -> fmt::Result 
         } => {
             write!(f, "stroke {stroke}, chunk {chunk}, sample {sample}: ")?;
             match kind {
-                GlitchName::Rail => write!(
+                GlitchKind::Rail => write!(
                     f,
                     "raw value {value} is at the sensor's rail before the impact"
                 )?,
-                GlitchName::Spike => write!(
+                GlitchKind::Spike => write!(
                     f,
                     "raw value {value} is a single-sample spike (its neighbours agree)"
                 )?,
@@ -434,7 +440,7 @@ mod tests {
             stroke: 3,
             chunk: 7,
             sample: 12,
-            kind: GlitchName::Rail,
+            kind: GlitchKind::Rail,
             value: -32768,
         });
         let text = Sentence(&error).to_string();
@@ -473,17 +479,16 @@ mod tests {
             LinkError::NoAim(NoAim::ObjectBallNotHit),
             LinkError::NoAim(NoAim::PocketUnreachable),
             LinkError::NoAim(NoAim::NotConverged),
-            LinkError::Stroke(StrokeRejected::RateOutOfRange),
-            LinkError::Stroke(StrokeRejected::ScaleTooSmall),
-            LinkError::Stroke(StrokeRejected::TooShort {
-                samples: 10,
-                needed: 600,
-            }),
-            LinkError::Stroke(StrokeRejected::BadScale),
-            LinkError::Stroke(StrokeRejected::NotAtRest),
-            LinkError::Stroke(StrokeRejected::NoImpact),
-            LinkError::Stroke(StrokeRejected::Saturated { index: 99 }),
-            LinkError::Stroke(StrokeRejected::NotForward { speed: -0.5 }),
+            LinkError::Stroke(StrokeError::InvalidConfig(ConfigField::SampleRate)),
+            LinkError::Stroke(StrokeError::InvalidConfig(ConfigField::FullScale)),
+            LinkError::Stroke(StrokeError::InvalidConfig(ConfigField::MinRest)),
+            LinkError::Stroke(StrokeError::TooShort { len: 10, min: 600 }),
+            LinkError::Stroke(StrokeError::NotFinite { index: 0 }),
+            LinkError::Stroke(StrokeError::NotAtRest),
+            LinkError::Stroke(StrokeError::NoImpact),
+            LinkError::Stroke(StrokeError::Saturated { index: 99 }),
+            LinkError::Stroke(StrokeError::NotForward { speed: -0.5 }),
+            LinkError::Stroke(StrokeError::Strike(Error::NumericalFailure)),
             LinkError::Upload(UploadFault::NotStarted {
                 stroke: 1,
                 chunk: 2,
@@ -516,7 +521,7 @@ mod tests {
                 stroke: 1,
                 chunk: 2,
                 sample: 3,
-                kind: GlitchName::Spike,
+                kind: GlitchKind::Spike,
                 value: 9000,
             }),
             LinkError::AnswerTooLarge,
