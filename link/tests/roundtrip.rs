@@ -1227,6 +1227,12 @@ fn strategies_reach_every_variant() {
         unknown.is_empty(),
         "drawn but not in schema_enums (add the enum there): {unknown:?}"
     );
+    let enums: BTreeSet<_> = expected.iter().map(|(ty, _)| ty).collect();
+    println!(
+        "all {} variants of the schema's {} enums drawn (25,000 values)",
+        expected.len(),
+        enums.len()
+    );
     assert!(coverage.some > 1000 && coverage.none > 1000);
     for len in [0, MAX_SAMPLES, MAX_SAMPLES - 1, MAX_OBJECT_BALLS] {
         assert!(coverage.seq_lengths.contains(&len), "no sequence of {len}");

@@ -294,6 +294,7 @@ fn value(name: &str) -> Result<String> {
         }
         "nrf52840-flash" => thousands(nrf52840_sizes().map(|s| s.text + s.data)?),
         "nrf52840-static-ram" => thousands(nrf52840_sizes().map(|s| s.data + s.bss)?),
+        "link-code-lines" => thousands(crate::lines::link_code_lines()? as u64),
         "max-frame" => thousands(cuesight_link::frame::MAX_FRAME as u64),
         "max-samples" => cuesight_link::MAX_SAMPLES.to_string(),
         "stroke-capacity" => thousands(cuesight_link::STROKE_CAPACITY as u64),

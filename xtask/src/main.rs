@@ -18,6 +18,7 @@ mod cmd;
 mod docs;
 mod format;
 mod fuzz;
+mod lines;
 mod python;
 mod qemu;
 mod size;

@@ -90,6 +90,10 @@ const STEPS: &[Step] = &[
         action: || size::check_budgets(&qemu::elf_path()),
     },
     Step {
+        title: "link: at most 1,500 lines of code in link/src (issue 14)",
+        action: crate::lines::check_link,
+    },
+    Step {
         title: "firmware: no reachable panic (release profile, --features panic-never: links only if no panic path survives)",
         action: panic_never,
     },
