@@ -41,6 +41,7 @@ pub mod params_file;
 mod problem;
 pub mod profile;
 pub mod report;
+mod search;
 
 use std::path::PathBuf;
 use std::process::ExitCode;

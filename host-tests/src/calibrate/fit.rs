@@ -4,12 +4,13 @@
 use std::cell::Cell;
 use std::time::Instant;
 
-use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
+use levenberg_marquardt::LeastSquaresProblem;
 use nalgebra::DVector;
 
 use super::input::Measurement;
 use super::problem::Problem;
 use super::profile::Profiler;
+use super::search::Search;
 
 pub use super::cross_validate::{cross_validate, series, Fold};
 pub use super::model::{model_throw, rigid_ceiling_deg, stun, FitKind, Physics, Solver};
@@ -31,6 +32,10 @@ pub struct FitOptions {
     pub progress: bool,
     /// How the 95 % intervals are computed.
     pub intervals: Intervals,
+    /// Steps of the compliant reference solver (`--fit mu-v-k`; `ReferenceConfig::steps`)
+    /// for the fit's answer; the search from every start runs at
+    /// [`super::search::COARSE_STEPS`] first.
+    pub compliant_steps: usize,
 }
 
 /// How the 95 % confidence intervals are computed.
@@ -64,6 +69,7 @@ impl FitOptions {
             max_evaluations: 100_000,
             progress: false,
             intervals: Intervals::Profile,
+            compliant_steps: crate::reference::ReferenceConfig::default().steps,
         }
     }
 }
@@ -180,30 +186,6 @@ pub fn t95(dof: usize) -> f64 {
     }
 }
 
-/// Starting points: TP A.14's Marlow fit and two others spread in the decay rate.
-fn starts(kind: FitKind, physics: &Physics) -> Vec<Vec<f64>> {
-    let e = physics.restitution;
-    match kind {
-        FitKind::Mu => vec![vec![0.05]],
-        FitKind::MuV => vec![
-            vec![0.00995, 0.108, 1.088],
-            vec![0.03, 0.1, 0.3],
-            vec![0.02, 0.2, 3.0],
-        ],
-        FitKind::MuVE => vec![
-            vec![0.00995, 0.108, 1.088, e],
-            vec![0.03, 0.1, 0.3, e],
-            vec![0.02, 0.2, 3.0, e],
-        ],
-        // The throw oscillates with η = √(3.5 κ) (β = −cos(π η) for a stuck contact):
-        // starts in the first two lobes, near Mindlin's elastic value and rigid-like.
-        FitKind::MuVK => [0.1, 0.15, 1.0, 30.0]
-            .iter()
-            .map(|&kappa| vec![0.02, 0.1, 0.44, kappa])
-            .collect(),
-    }
-}
-
 /// Fit `options.kind` to `points` by weighted least squares (Levenberg–Marquardt).
 pub fn fit(points: &[Measurement], options: &FitOptions) -> Result<Fit, FitError> {
     let p = options.kind.len();
@@ -226,50 +208,15 @@ pub fn fit(points: &[Measurement], options: &FitOptions) -> Result<Fit, FitError
         .collect();
     let evaluations = Cell::new(0);
     let last_print = Cell::new(0.0);
-    let failure = Cell::new(None);
     let start = Instant::now();
-    let mut best: Option<(DVector<f64>, f64)> = None;
-    let mut reasons = Vec::new();
-    for theta0 in starts(options.kind, &options.physics) {
-        let problem = Problem {
-            points,
-            sigma: sigma.clone(),
-            options,
-            theta: DVector::from_vec(theta0),
-            fixed: None,
-            stage: "fitting",
-            evaluations: &evaluations,
-            start,
-            last_print: &last_print,
-            failure: &failure,
-        };
-        let (solved, report) = LevenbergMarquardt::new()
-            .with_patience(200)
-            .minimize(problem);
-        if report.termination.was_successful() && report.objective_function.is_finite() {
-            let better = best
-                .as_ref()
-                .is_none_or(|(_, f)| report.objective_function < *f);
-            if better {
-                best = Some((solved.theta.clone(), report.objective_function));
-            }
-        } else {
-            reasons.push(
-                failure
-                    .take()
-                    .unwrap_or_else(|| format!("{:?}", report.termination)),
-            );
-        }
-        if evaluations.get() >= options.max_evaluations {
-            break;
-        }
-    }
-    let Some((theta, _)) = best else {
-        return Err(FitError(format!(
-            "the fit did not converge: {}",
-            reasons.first().map_or("no start succeeded", String::as_str)
-        )));
+    let search = Search {
+        points,
+        sigma: &sigma,
+        evaluations: &evaluations,
+        start,
+        last_print: &last_print,
     };
+    let theta = search.best(options)?;
     finish(
         points,
         &sigma,

@@ -152,8 +152,20 @@ impl Physics {
     }
 }
 
-/// The model's throw (degrees) for one measurement.
+/// The model's throw (degrees) for one measurement (the reference solver at its default
+/// steps).
 pub fn model_throw(solver: Solver, physics: &Physics, m: &Measurement) -> Result<f64, String> {
+    model_throw_with(solver, physics, m, ReferenceConfig::default().steps)
+}
+
+/// [`model_throw`] with the compliant reference solver at `compliant_steps` steps
+/// (`ReferenceConfig::steps`; the rigid contact always takes its default).
+pub fn model_throw_with(
+    solver: Solver,
+    physics: &Physics,
+    m: &Measurement,
+    compliant_steps: usize,
+) -> Result<f64, String> {
     let w = m.spin.vector(m.speed_mps, m.cut_deg, physics.radius);
     match solver {
         Solver::KimGrip | Solver::Exact if physics.tangential_stiffness.is_some() => Err(
@@ -185,9 +197,14 @@ pub fn model_throw(solver: Solver, physics: &Physics, m: &Measurement) -> Result
             };
             let phi = m.cut_deg.to_radians();
             let v = DVec3::new(m.speed_mps * phi.cos(), m.speed_mps * phi.sin(), 0.0);
+            let defaults = ReferenceConfig::default();
             let config = ReferenceConfig {
                 tangential_stiffness: physics.tangential_stiffness,
-                ..ReferenceConfig::default()
+                steps: match physics.tangential_stiffness {
+                    Some(_) => compliant_steps,
+                    None => defaults.steps,
+                },
+                ..defaults
             };
             reference::solve(&p, v, DVec3::from(w), &config)
                 .map(|o| o.throw_angle_deg())

@@ -12,7 +12,7 @@ use nalgebra::{DMatrix, DVector, Dyn, Owned};
 
 use super::fit::{FitKind, FitOptions};
 use super::input::Measurement;
-use super::model::model_throw;
+use super::model::model_throw_with;
 
 /// Typical size of each parameter (finite-difference steps and penalty scale).
 const TYPICAL: [f64; 4] = [0.01, 0.1, 1.0, 0.1];
@@ -113,7 +113,14 @@ impl Problem<'_> {
         let out = self
             .points
             .iter()
-            .map(|m| model_throw(self.options.solver, &physics, m))
+            .map(|m| {
+                model_throw_with(
+                    self.options.solver,
+                    &physics,
+                    m,
+                    self.options.compliant_steps,
+                )
+            })
             .collect::<Result<Vec<f64>, String>>();
         let n = self.evaluations.get() + self.points.len();
         self.evaluations.set(n);

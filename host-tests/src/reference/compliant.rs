@@ -48,11 +48,33 @@
 //! `(κ/η) tan φ · sin(η x)/sin x` (`x = ω_n t`), constant `κ tan φ` at `η = 1`. The
 //! rigid limit is `κ → ∞`.
 //!
-//! **Integration**: the normal impulse `p` is the independent variable as in the rigid
-//! solver, with steps no longer than its step and than `0.01 F/ω_t` of normal impulse
-//! (`ω_t dt ≤ 0.01`); position Verlet (Störmer) for the spring — half a step of `u`,
-//! the impulse `−k_t u dt`, half a step of `u` — second order; the compression end and
-//! the end of the impact located inside their steps as in the rigid solver.
+//! **Integration** in the normal oscillator's phase (time), not in raw normal impulse.
+//! While the ball–ball impulse alone acts on `v_n` (each centre moves `dp/M` along `x`, a
+//! tangential impulse at `±R x̂` has no normal component at the contact point, so
+//! `dv_n/dp = a = 2/M`, 1/kg: m/s per N·s), the normal spring is a harmonic
+//! oscillator: `dF/dt = −k v_n` (the spring shortens at `−v_n`; N/s) and
+//! `dv_n/dt = a F` (m/s²), so the point `(F/√k, −v_n/√a)` (both √J) turns on a circle of
+//! radius `ρ` at the angular rate `ω = √(k a)` (rad/s; `k = k_n` compressing, `k_n/e*²`
+//! restoring). With the phase `θ = atan2(F/√k, −v_n/√a)`:
+//!
+//! ```text
+//! v_n = −ρ √a cos θ,   F = ρ √k sin θ,   p(θ₁) − p(θ₀) = ρ (cos θ₀ − cos θ₁)/√a,
+//! t(θ₁) − t(θ₀) = (θ₁ − θ₀)/ω.
+//! ```
+//!
+//! Compression ends at `θ = π/2` (`v_n = 0`) and the impact at `θ = π` of the restoring
+//! circle (`F = 0`), so both ends are step ends and the step's duration is exact: the
+//! √-shaped force near both ends (`F ∝ √p`), where a midpoint `dt = dp/F` is not
+//! accurate, needs no small steps. Each step advances `θ` by at most `π/steps` and
+//! `ω_t dt ≤ PHASE_STEP·1000/steps`; the circle is rebuilt from the state (`W`, `v_n`)
+//! every step, so table reactions that change `v_n` (spin shots) enter at the next step,
+//! and the end is bisected as in the rigid solver if `W` reaches `e*²`'s target first.
+//! The tangential spring takes a position-Verlet (Störmer) step in time — half a step of
+//! `u`, the impulse `−k_t u dt`, half a step of `u` — with the force at the step's middle
+//! phase for the cone and `μ` at the predicted middle slip speed (slip change `7/M` per
+//! unit tangential impulse, m/s per N·s), second order in `dt`.
+
+use std::f64::consts::{FRAC_PI_2, PI};
 
 use glam::{DVec2, DVec3};
 
@@ -62,7 +84,7 @@ use super::{
     NU,
 };
 
-/// Largest tangential phase advance per step, `ω_t dt`.
+/// Largest tangential phase advance per step, `ω_t dt`, at `steps = 1000`.
 const PHASE_STEP: f64 = 0.01;
 
 /// State of the compliant contact between steps.
@@ -77,6 +99,16 @@ struct Contact {
     work: f64,
 }
 
+/// Where a contact is on its normal circle (module docs): radius `ρ` (√J), phase `θ`
+/// (rad), and the circle's stiffness `k` (N/m) and rate `ω` (rad/s).
+#[derive(Clone, Copy, Debug)]
+struct Circle {
+    rho: f64,
+    theta: f64,
+    k: f64,
+    omega: f64,
+}
+
 struct Compliant {
     solver: Solver,
     /// Normal stiffness while compressing (N/m); any value, only `κ` matters.
@@ -86,6 +118,11 @@ struct Compliant {
     /// Tangential frequency of the stuck contact (rad/s).
     omega_t: f64,
     restitution: f64,
+    /// Normal relative-velocity change per normal impulse, `a = 2/M` (1/kg).
+    a: f64,
+    /// Largest phase step of the normal circle (rad) and of the tangential spring.
+    max_phase: f64,
+    tangential_phase: f64,
 }
 
 impl Compliant {
@@ -106,33 +143,77 @@ impl Compliant {
         }
     }
 
+    /// The normal circle through the contact's `(F, v_n)` (`None` once `e* = 0` ended
+    /// compression: the restoring spring is rigid).
+    fn circle(&self, c: &Contact, w_c: Option<f64>) -> Option<Circle> {
+        let k = match w_c {
+            None => self.k_n,
+            Some(_) if self.restitution == 0.0 => return None,
+            Some(_) => self.k_n / (self.restitution * self.restitution),
+        };
+        // x = F/√k and y = −v_n/√a, both √J.
+        let x = self.force(c.work, w_c) / k.sqrt();
+        let y = -self.normal_velocity(&c.balls) / self.a.sqrt();
+        Some(Circle {
+            rho: x.hypot(y),
+            theta: x.atan2(y),
+            k,
+            omega: (k * self.a).sqrt(),
+        })
+    }
+
+    /// Phase reached after a normal impulse `dp` on `circle`:
+    /// `cos θ₁ = cos θ₀ − dp √a/ρ`.
+    fn phase_after(&self, circle: &Circle, dp: f64) -> f64 {
+        if circle.rho <= 0.0 {
+            return circle.theta;
+        }
+        (circle.theta.cos() - dp * self.a.sqrt() / circle.rho)
+            .clamp(-1.0, 1.0)
+            .acos()
+    }
+
     /// One step of normal impulse `dp` from `c`: returns the new contact and whether
     /// the slider stuck (the spring stayed inside the friction cone).
     fn step(&self, c: &Contact, dp: f64, w_c: Option<f64>) -> (Contact, bool) {
-        let vn0 = self.normal_velocity(&c.balls);
-        // Force at the step's middle, the work predicted from the start's v_n.
-        let force = self.force(c.work + 0.5 * vn0 * dp, w_c);
+        // Duration and middle force from the normal circle (module docs).
+        let (dt, force) = match self.circle(c, w_c) {
+            Some(circle) if dp > 0.0 => {
+                let theta1 = self.phase_after(&circle, dp);
+                let dt = (theta1 - circle.theta) / circle.omega;
+                let mid = 0.5 * (circle.theta + theta1);
+                (dt, circle.rho * circle.k.sqrt() * mid.sin())
+            }
+            _ => (0.0, 0.0),
+        };
         let v0 = self.solver.tangential_slip(&c.balls);
-        let mu = self.solver.p.mu_at(v0.length());
-        let (half, j, stuck_half) = if force <= 0.0 || mu == 0.0 {
-            (DVec2::ZERO, DVec2::ZERO, false)
-        } else {
-            let dt = dp / force;
-            let (half, stuck) = cone(c.stretch + 0.5 * dt * v0, mu * force / self.k_t);
+        let mu0 = self.solver.p.mu_at(v0.length());
+        let active = force > 0.0 && dt > 0.0 && mu0 > 0.0;
+        let (half, j, stuck_half) = if active {
+            let drift = c.stretch + 0.5 * dt * v0;
+            let (half, _) = cone(drift, mu0 * force / self.k_t);
+            // μ at the middle slip speed: the slip moves by 7/M per unit tangential
+            // impulse on the object ball (m/s per N·s), half of it by the middle.
+            let v_mid = v0 - 3.5 / self.solver.p.mass * self.k_t * half * dt;
+            let mu = self.solver.p.mu_at(v_mid.length());
+            let (half, stuck) = cone(drift, mu * force / self.k_t);
             (half, -self.k_t * half * dt, stuck)
+        } else {
+            (DVec2::ZERO, DVec2::ZERO, false)
         };
         let balls = self.solver.step(&c.balls, dp, j);
+        let vn0 = self.normal_velocity(&c.balls);
         let vn1 = self.normal_velocity(&balls);
         let work = c.work + 0.5 * (vn0 + vn1) * dp;
         // Second half step of the stretch with the new velocity, on the new cone.
-        let (stretch, stuck) = if force <= 0.0 || mu == 0.0 {
-            (DVec2::ZERO, false)
-        } else {
-            let dt = dp / force;
+        let (stretch, stuck) = if active {
             let v1 = self.solver.tangential_slip(&balls);
             let end_force = self.force(work, w_c.or((vn1 >= 0.0).then_some(work)));
+            let mu = self.solver.p.mu_at(v1.length());
             let (s, stuck_end) = cone(half + 0.5 * dt * v1, mu * end_force / self.k_t);
             (s, stuck_half && stuck_end)
+        } else {
+            (DVec2::ZERO, false)
         };
         (
             Contact {
@@ -145,11 +226,29 @@ impl Compliant {
         )
     }
 
-    /// The step's size: the rigid solver's, or less so that `ω_t dt ≤ PHASE_STEP`.
-    fn step_size(&self, c: &Contact, dp_max: f64, w_c: Option<f64>) -> f64 {
-        let force = self.force(c.work, w_c);
-        let by_phase = PHASE_STEP * force / self.omega_t;
-        by_phase.clamp(dp_max * 1e-4, dp_max)
+    /// The step's normal impulse: a phase step of at most `max_phase` on the normal
+    /// circle and `tangential_phase/ω_t` in time, up to the circle's end phase `end`
+    /// (π/2 compressing, π restoring). Returns `dp` and whether it reaches `end`.
+    fn step_size(&self, c: &Contact, w_c: Option<f64>, fallback: f64) -> (f64, bool) {
+        let end = if w_c.is_none() { FRAC_PI_2 } else { PI };
+        let Some(circle) = self.circle(c, w_c) else {
+            return (fallback, false);
+        };
+        let by_time = self.tangential_phase * circle.omega / self.omega_t;
+        let theta1 = circle.theta + self.max_phase.min(by_time);
+        let (theta1, at_end) = if theta1 >= end {
+            (end, true)
+        } else {
+            (theta1, false)
+        };
+        let dp = circle.rho * (circle.theta.cos() - theta1.cos()) / self.a.sqrt();
+        if dp > 1e-9 * fallback {
+            (dp, at_end)
+        } else {
+            // Past the circle's end (a table reaction moved v_n): small steps until the
+            // end of compression or of the impact is detected from v_n or W.
+            (fallback, false)
+        }
     }
 }
 
@@ -175,6 +274,7 @@ pub(super) fn solve(
     // ω_n = 1 rad/s: k_n = M/2 (any value gives the same velocities).
     let k_n = 0.5 * m;
     let k_t = kappa * k_n;
+    let steps = config.steps.max(10);
     let model = Compliant {
         solver: Solver {
             p: *params,
@@ -186,10 +286,13 @@ pub(super) fn solve(
         k_t,
         omega_t: (7.0 * k_t / m).sqrt(),
         restitution: params.restitution,
+        a: 2.0 / m,
+        max_phase: PI / steps as f64,
+        tangential_phase: PHASE_STEP * 1000.0 / steps as f64,
     };
     let e = params.restitution;
-    let steps = config.steps.max(10);
-    let dp_max = 0.5 * (1.0 + e).max(1.0) * m * velocity.x / steps as f64;
+    // The smallest step, when the circle cannot say (1e-4 of the rigid solver's).
+    let fallback = 1e-4 * 0.5 * (1.0 + e).max(1.0) * m * velocity.x / steps as f64;
     let mut contact = Contact {
         balls: State {
             cue: BallState {
@@ -210,7 +313,7 @@ pub(super) fn solve(
     loop {
         taken += 1;
         let w_c = compression.map(|c| c.1);
-        let dp = model.step_size(&contact, dp_max, w_c);
+        let (dp, at_end) = model.step_size(&contact, w_c, fallback);
         let vn0 = model.normal_velocity(&contact.balls);
         let (next, stuck) = model.step(&contact, dp, w_c);
         let vn1 = model.normal_velocity(&next.balls);
@@ -225,6 +328,14 @@ pub(super) fn solve(
         }
         if let Some((_, wc)) = compression {
             let target = wc * (1.0 - e * e);
+            if w_c.is_some() && at_end && (next.work - target).abs() <= 1e-10 * wc.abs() {
+                // The step ended on the restoring circle's end, F = 0: the impact's end.
+                if stuck && stick_impulse.is_none() && contact.p > 0.0 {
+                    stick_impulse = Some(contact.p);
+                }
+                contact = next;
+                break;
+            }
             if next.work >= target {
                 // The impact ends inside this step: bisect on the step fraction.
                 let (mut lo, mut hi) = (just_compressed.unwrap_or(0.0), 1.0);
@@ -245,7 +356,7 @@ pub(super) fn solve(
         }
         contact = next;
         if taken > 1_000 * steps {
-            break; // cannot happen for valid input: each step is at least 1e-4 of the rigid one
+            break; // cannot happen for valid input: each step is at least `fallback`
         }
     }
     let regime = if params.mu_at(0.0) == 0.0 {

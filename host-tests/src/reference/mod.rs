@@ -88,7 +88,9 @@ impl ReferenceParams {
 /// Integration settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ReferenceConfig {
-    /// Number of steps across the frictionless impact `(1 + e*) M U_x / 2`.
+    /// Number of steps across the frictionless impact `(1 + e*) M U_x / 2` (the compliant
+    /// contact: at most `π/steps` of the normal spring's phase and `10/steps` rad of the
+    /// tangential one per step, `reference/compliant.rs`).
     pub steps: usize,
     /// Apply table friction along `∓x` only, as the seed's eq. (7) approximates,
     /// instead of against the table-contact slip (for measuring that approximation).
