@@ -159,6 +159,9 @@ pub(crate) struct Plan {
     /// Slowest reported speed (m/s) and cue elevation at rest (rad).
     pub min_speed: f32,
     pub elevation: f32,
+    /// The stroke metrics' pause threshold, `REST_SPEED` in velocity counts
+    /// (counts·samples: times `scale · dt` it is m/s).
+    pub slow: f32,
 }
 
 /// `round(seconds · rate)`, at least `at_least` (casts saturate; inputs are bounded).
@@ -298,6 +301,7 @@ impl Plan {
             normal_span: (rail - normal) as u32,
             min_speed: config.min_speed,
             elevation: s.cue_elevation,
+            slow: super::integral::REST_SPEED * rate / scale,
         })
     }
 }

@@ -45,9 +45,32 @@ pub struct StreamStroke {
     /// of the 8 samples ending 4 samples before the impact crossing (1.2 ms at
     /// 6.66 kHz). Positive: still accelerating through the contact.
     pub accel_at_impact: f32,
+    /// How far the cue went back from where it rested (m): the deepest point of the
+    /// position integrated from the rest end (`docs/sensors.md` §11, stroke metrics).
+    /// 0 for a stroke with no backswing.
+    pub backswing_length: f32,
+    /// Where the backswing starts: the end of the address rest (about 10 ms before the
+    /// cue moves; the last rest before the backswing, which is not [`Self::rest_end`]
+    /// when a long pause at the back became the speed's integration origin).
+    pub backswing_start: u64,
+    /// From [`Self::backswing_start`] to the start of the pause at the back (s).
+    pub backswing_time: f32,
+    /// The pause at the back (s): the time around the deepest point when the cue moves
+    /// slower than 0.02 m/s. Without a held pause it is the reversal's own slow passage
+    /// (about `0.04 / |a|` s at a reversal of `a` m/s²).
+    pub pause: f32,
+    /// From the end of that pause to the tip contact (s).
+    pub forward_time: f32,
 }
 
 impl StreamStroke {
+    /// The stroke's tempo: [`Self::backswing_time`] over [`Self::forward_time`]
+    /// (dimensionless; coaches' "slow back, smooth through" is a tempo above 1). `None`
+    /// when the forward time is zero.
+    pub fn tempo(&self) -> Option<f32> {
+        (self.forward_time > 0.0).then(|| self.backswing_time / self.forward_time)
+    }
+
     /// Ball speed and spin for this cue speed (TP A.30, [`cuesight::strike::strike`]).
     pub fn strike(
         &self,

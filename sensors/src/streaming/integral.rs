@@ -2,6 +2,7 @@
 //! module docs).
 
 use super::config::ceil;
+use super::phases::Phases;
 use super::{at_or_after, StreamEvent, StreamFault, StreamStroke, StreamingEstimator};
 use crate::lsm6dsox::STANDARD_GRAVITY;
 
@@ -46,6 +47,8 @@ pub(super) struct Stroke {
     live_from: u32,
     /// A full-scale sample after the rest end.
     pub first_saturated: Option<u32>,
+    /// Velocity and position, for the stroke metrics.
+    phases: Phases,
 }
 
 impl Stroke {
@@ -71,6 +74,7 @@ impl Stroke {
             quad_block: 0.0,
             live_from: 0,
             first_saturated: None,
+            phases: Phases::new(),
         }
     }
 
@@ -100,6 +104,9 @@ impl StreamingEstimator {
         let noise = cuesight::math::sqrt(self.run.variance) * self.plan.scale;
         let limit = ceil(bias - self.plan.impact);
         let first_saturated = self.last_saturated.filter(|&s| at_or_after(s, rest_end));
+        // A later rest replacing the origin of a stroke in progress (the address after a
+        // settling move, or a long pause at the back): the phases decide at the impact.
+        let reanchor = self.stroke.active;
         // Field by field: a struct literal is built on the stack and copied.
         let s = &mut self.stroke;
         s.active = true;
@@ -121,6 +128,21 @@ impl StreamingEstimator {
         s.quad_block = 0.0;
         s.live_from = n.wrapping_add(1);
         s.first_saturated = first_saturated;
+        self.start_phases(n, rest_end, p, reanchor);
+    }
+
+    /// The stroke's phases start at `rest_end` (acceleration prefix sum `p` there),
+    /// integrated through sample `n` with the current bias; `within_stroke` as
+    /// [`Phases::start`].
+    pub(super) fn start_phases(&mut self, n: u32, rest_end: u32, p: i32, within_stroke: bool) {
+        let span = n.wrapping_add(1).wrapping_sub(rest_end);
+        // Over the span (12 ms at most) the elevation change is taken as the current
+        // one: at a rest within the stroke (a pause at the back) the cue is tilted.
+        let s = &mut self.stroke;
+        let level = s.bias - self.tilt_gain * s.tilt;
+        let velocity = self.p.wrapping_sub(p) as f32 - span as f32 * level;
+        s.phases
+            .start(rest_end, n, velocity, span as f32, within_stroke);
     }
 
     /// `Σ (a − bias)` over the first `count` samples from the rest end, `p` being the
@@ -163,7 +185,7 @@ impl StreamingEstimator {
     /// Per-sample tilt sums (step 5, gyro-aided part): `A = T + q/2` is the elevation
     /// change at mid-sample, `T` before it, `q` the bias-free pitch rate.
     #[inline(always)]
-    pub(super) fn integrate(&mut self, n: u32, p: i32) {
+    pub(super) fn integrate(&mut self, n: u32, a: i32, p: i32) {
         let s = &mut self.stroke;
         self.recent_tilt[n as usize & 7] = s.tilt;
         let q = p as f32 - s.gyro_bias;
@@ -171,6 +193,8 @@ impl StreamingEstimator {
         s.lin_block += mid;
         s.quad_block += mid * mid;
         s.tilt += q;
+        s.phases
+            .step(n, a as f32 - s.bias, self.tilt_gain * mid, self.plan.slow);
     }
 
     /// Block end: fold the block's sums into the totals (f32 sums stay block-sized);
@@ -229,17 +253,31 @@ impl StreamingEstimator {
             self.end_block(n);
         }
         Some(match r.kind {
-            Kind::Stroke => StreamEvent::Stroke(StreamStroke {
-                cue_speed: r.speed,
-                impact_index: r.index,
-                rest_start: r.other,
-                rest_end: r.rest_end,
-                bias: r.bias,
-                rest_noise: r.noise,
-                stroke_duration: r.duration,
-                tilt_at_impact: r.tilt,
-                accel_at_impact: r.accel,
-            }),
+            Kind::Stroke => {
+                // The phases only for a stroke (a knock's report stays short).
+                let phases = self.stroke.phases.report();
+                let dt = self.plan.dt;
+                let onset = r.index as u32;
+                let seconds = |from: u32, to: u32| to.wrapping_sub(from) as f32 * dt;
+                StreamEvent::Stroke(StreamStroke {
+                    cue_speed: r.speed,
+                    impact_index: r.index,
+                    rest_start: r.other,
+                    rest_end: r.rest_end,
+                    bias: r.bias,
+                    rest_noise: r.noise,
+                    stroke_duration: r.duration,
+                    tilt_at_impact: r.tilt,
+                    accel_at_impact: r.accel,
+                    backswing_length: phases.depth * self.plan.scale * dt * dt,
+                    backswing_start: self.unwrap_index(phases.origin),
+                    backswing_time: seconds(phases.origin, phases.pause_start),
+                    pause: seconds(phases.pause_start, phases.pause_end),
+                    // The pause ends before the onset (a forward stroke is faster than
+                    // `slow`); `min` keeps a degenerate stroke's figure finite and short.
+                    forward_time: seconds(phases.pause_end, onset).min(r.duration),
+                })
+            }
             Kind::Saturated => StreamEvent::Fault(StreamFault::Saturated {
                 index: r.other,
                 impact: r.index,

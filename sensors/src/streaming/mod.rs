@@ -2,7 +2,7 @@
 //!
 //! The windowed estimator ([`crate::stroke`]) needs the whole stroke in a buffer (3.6 s,
 //! 48 kB at 6.66 kHz). This one keeps block statistics, prefix sums and a 128-sample
-//! ring of them ([`StreamingEstimator`] is 1,464 bytes), and reports each stroke on the
+//! ring of them ([`StreamingEstimator`] is 1,528 bytes), and reports each stroke on the
 //! sample that crosses the impact threshold. The steps are the windowed estimator's
 //! (`stroke.rs` module docs, `docs/sensors.md` §4), rearranged so that each is decided
 //! when its last sample arrives:
@@ -61,6 +61,7 @@
 mod config;
 mod event;
 mod integral;
+mod phases;
 mod rest;
 #[cfg(test)]
 mod tests;
@@ -108,6 +109,10 @@ pub struct StreamingEstimator {
     not_finite: bool,
     /// `(g cos θ₀, g sin θ₀)` (m/s²), computed at the first block end.
     gravity: Option<(f32, f32)>,
+    /// The stroke metrics' first-order tilt correction, `g cos θ₀ · pitch_scale · Δt /
+    /// scale`: velocity counts per count·sample of mid-sample elevation change (set
+    /// with `gravity`; `phases.rs`).
+    tilt_gain: f32,
 }
 
 impl StreamingEstimator {
@@ -135,6 +140,7 @@ impl StreamingEstimator {
             last_saturated: None,
             not_finite: false,
             gravity: None,
+            tilt_gain: 0.0,
         }
     }
 
@@ -234,7 +240,7 @@ impl StreamingEstimator {
         }
         // Integrate before the motion test: a rest end found now already covers `n`.
         if self.stroke.active {
-            self.integrate(n, p);
+            self.integrate(n, a, p);
         }
         if self.run.armed {
             self.motion_test(n, w_sum);

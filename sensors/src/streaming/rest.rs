@@ -150,9 +150,24 @@ impl StreamingEstimator {
         // to qualify then: three blocks are 75 ms, the delay 12.4 ms.)
         let rest_end = n.wrapping_add(1).wrapping_sub(self.plan.delay);
         let [p, c] = self.ring[rest_end as usize & super::MASK];
+        self.rest_ended(n, blocks, rest_start, rest_end, p, c);
+    }
+
+    /// A run ended at `rest_end`: the speed's new origin if it [`Self::qualifies`];
+    /// otherwise, if it is a rest within a stroke (an address after a settling move,
+    /// shorter than the rest before it), a new start for the stroke's phases only.
+    fn rest_ended(&mut self, n: u32, blocks: u32, rest_start: u32, rest_end: u32, p: i32, c: i32) {
         if self.qualifies(blocks, rest_start, rest_end, p) {
             self.anchor(n, rest_end, p, c, blocks);
+        } else if self.stroke.active && self.long_enough(blocks, rest_start, rest_end) {
+            self.start_phases(n, rest_end, p, true);
         }
+    }
+
+    /// `min_rest` of blocks and half a block of rest window.
+    fn long_enough(&self, blocks: u32, rest_start: u32, rest_end: u32) -> bool {
+        blocks >= self.plan.rest_blocks
+            && rest_end.wrapping_sub(rest_start) as i32 >= (self.plan.block / 2) as i32
     }
 
     /// Step 3: a run of `blocks` whose rest window starts at `rest_start`, ending at
@@ -163,9 +178,7 @@ impl StreamingEstimator {
     /// smooth move's acceleration plateau is not).
     fn qualifies(&self, blocks: u32, rest_start: u32, rest_end: u32, p: i32) -> bool {
         let plan = &self.plan;
-        let long_enough = blocks >= plan.rest_blocks
-            && rest_end.wrapping_sub(rest_start) as i32 >= (plan.block / 2) as i32;
-        long_enough
+        self.long_enough(blocks, rest_start, rest_end)
             && (!self.stroke.active
                 || blocks >= self.stroke.rest_blocks
                 || (blocks >= plan.trusted_blocks && self.at_rest(rest_end, p)))
@@ -203,8 +216,8 @@ impl StreamingEstimator {
             // (A qualifying run has three blocks or more, so this does not wrap.)
             let rest_end = b.start.wrapping_sub(plan.guard);
             let [p, c] = b.prev_guard_mark;
-            if armed && self.qualifies(blocks, rest_start, rest_end, p) {
-                self.anchor(n, rest_end, p, c, blocks);
+            if armed {
+                self.rest_ended(n, blocks, rest_start, rest_end, p, c);
             }
             if still {
                 // Still, but off the run's level: a new run starts with this block.
@@ -214,10 +227,9 @@ impl StreamingEstimator {
         }
         if self.gravity.is_none() {
             let (sin, cos) = cuesight::math::sin_cos(self.plan.elevation);
-            self.gravity = Some((
-                crate::lsm6dsox::STANDARD_GRAVITY * cos,
-                crate::lsm6dsox::STANDARD_GRAVITY * sin,
-            ));
+            let g_cos = crate::lsm6dsox::STANDARD_GRAVITY * cos;
+            self.gravity = Some((g_cos, crate::lsm6dsox::STANDARD_GRAVITY * sin));
+            self.tilt_gain = g_cos * self.plan.pitch_scale * self.plan.dt / self.plan.scale;
         }
         self.block_base += u64::from(self.plan.block);
         let b = &mut self.block;

@@ -94,6 +94,7 @@ fn shifted(event: StreamEvent, offset: u64) -> StreamEvent {
             s.impact_index -= offset;
             s.rest_start -= offset;
             s.rest_end -= offset;
+            s.backswing_start -= offset;
             StreamEvent::Stroke(s)
         }
         StreamEvent::Fault(f) => StreamEvent::Fault(match f {
