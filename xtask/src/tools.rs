@@ -260,6 +260,9 @@ impl Apt {
     fn run(&self, args: &[&str]) -> Result {
         let mut all: Vec<String> = self.sudo.iter().map(|s| s.to_string()).collect();
         all.extend(["apt-get".to_string(), "-q".to_string()]);
+        // Wait for another apt or dpkg (an unattended upgrade, a second xtask) instead of
+        // failing at once on its lock: a CI run lost its QEMU install that way.
+        all.extend(["-o".to_string(), "DPkg::Lock::Timeout=600".to_string()]);
         all.extend(self.extra.iter().cloned());
         all.extend(args.iter().map(|s| s.to_string()));
         cmd::run(
