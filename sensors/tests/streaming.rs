@@ -230,17 +230,6 @@ fn at_least_as_accurate_as_the_windowed_estimator() {
     }
 }
 
-/// A stroke for the acceptance streams: the model's draw, then an address of 0.25–3 s,
-/// a pause at the back of 0–1.5 s and a pendulum tilt of 0.5–2° (1–6 s per stroke).
-fn acceptance_stroke(rng: &mut ChaCha8Rng) -> (Stroke, f64) {
-    let mut stroke = Stroke::random(rng);
-    stroke.rest = rng.random_range(0.25..3.0);
-    stroke.pause = rng.random_range(0.0..1.5);
-    stroke.tilt_back = rng.random_range(0.5f64..2.0).to_radians();
-    let gap = rng.random_range(0.5..3.0);
-    (stroke, gap)
-}
-
 /// Every truth stroke found once, in order, nothing else; returns the relative speed
 /// errors and the largest impact distance.
 fn check_stream(events: &[StreamEvent], truth: &[Truth]) -> (Vec<f64>, usize) {
@@ -273,7 +262,9 @@ fn continuous_streams_meet_the_acceptance_figures() {
     for (noise_mg, seed) in [(3.0, 0x5712_0003u64), (8.0, 0x5712_0008)] {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         for _ in 0..6 {
-            let strokes: Vec<_> = (0..10).map(|_| acceptance_stroke(&mut rng)).collect();
+            let strokes: Vec<_> = (0..10)
+                .map(|_| kinematic::acceptance_stroke(&mut rng))
+                .collect();
             for (s, _) in &strokes {
                 shortest = shortest.min(s.times()[4]);
                 longest = longest.max(s.times()[4]);
@@ -359,7 +350,9 @@ fn spoilt_stream(
     spoil: impl FnOnce(&mut Vec<i16>, &mut Vec<i16>, &Truth),
 ) -> (Vec<i16>, Vec<i16>, Vec<Truth>) {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let strokes: Vec<_> = (0..3).map(|_| acceptance_stroke(&mut rng)).collect();
+    let strokes: Vec<_> = (0..3)
+        .map(|_| kinematic::acceptance_stroke(&mut rng))
+        .collect();
     let (mut accel, mut pitch, truth) =
         kinematic::stream(&strokes, FS, 3e-3 * kinematic::G, &mut rng);
     spoil(&mut accel, &mut pitch, &truth[1]);
@@ -400,7 +393,9 @@ fn a_double_hit_is_reported_after_the_stroke() {
     let (accel, pitch, truth) = spoilt_stream(0xD0B, |_, _, _| {});
     // Rebuild the middle stroke with a second contact 20 ms after the first.
     let mut rng = ChaCha8Rng::seed_from_u64(0xD0B);
-    let mut strokes: Vec<_> = (0..3).map(|_| acceptance_stroke(&mut rng)).collect();
+    let mut strokes: Vec<_> = (0..3)
+        .map(|_| kinematic::acceptance_stroke(&mut rng))
+        .collect();
     let dv = strokes[1].0.delta_v;
     strokes[1].0.second_hit = Some((0.020, 0.5 * dv));
     let (accel2, pitch2, truth2) = kinematic::stream(&strokes, FS, 3e-3 * kinematic::G, &mut rng);
@@ -429,7 +424,7 @@ fn a_double_hit_is_reported_after_the_stroke() {
 #[test]
 fn a_stream_that_ends_mid_stroke_is_reported_and_the_next_one_works() {
     let mut rng = ChaCha8Rng::seed_from_u64(0xE0F);
-    let (stroke, _) = acceptance_stroke(&mut rng);
+    let (stroke, _) = kinematic::acceptance_stroke(&mut rng);
     let (accel, pitch) = stroke.samples(FS, 8e-3 * kinematic::G, &mut rng);
     let contact = stroke.contact_sample(FS);
     let cut = contact - (0.030 * FS) as usize; // 30 ms before the contact
@@ -654,7 +649,9 @@ fn bad_configs_are_named() {
 /// double hit), and a −30 g knock in the fourth's 1.5 s address.
 fn bench_stream() -> (Vec<i16>, Vec<i16>, Vec<Truth>, usize) {
     let mut rng = ChaCha8Rng::seed_from_u64(0xBE4C);
-    let mut strokes: Vec<_> = (0..5).map(|_| acceptance_stroke(&mut rng)).collect();
+    let mut strokes: Vec<_> = (0..5)
+        .map(|_| kinematic::acceptance_stroke(&mut rng))
+        .collect();
     strokes[1].0.pause = 1.2;
     let dv = strokes[2].0.delta_v;
     strokes[2].0.second_hit = Some((0.020, 0.5 * dv));

@@ -19,25 +19,13 @@ mod kinematic;
 
 use cuesight_sensors::{StreamConfig, StreamEvent, StreamStroke, StreamingEstimator};
 use kinematic::{Stroke, Truth};
-use rand::{Rng, SeedableRng};
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 const FS: f64 = 6667.0;
 
 /// The metrics' pause threshold (m/s), `REST_SPEED` of `sensors/src/streaming/integral.rs`.
 const SLOW: f64 = 0.02;
-
-/// A stroke as the streaming acceptance sets draw it (`tests/streaming.rs`,
-/// `acceptance_stroke`): address 0.25–3 s, pause at the back 0–1.5 s, pendulum tilt
-/// 0.5–2°, 0.5–3 s still after it.
-fn acceptance_stroke(rng: &mut ChaCha8Rng) -> (Stroke, f64) {
-    let mut stroke = Stroke::random(rng);
-    stroke.rest = rng.random_range(0.25..3.0);
-    stroke.pause = rng.random_range(0.0..1.5);
-    stroke.tilt_back = rng.random_range(0.5f64..2.0).to_radians();
-    let gap = rng.random_range(0.5..3.0);
-    (stroke, gap)
-}
 
 /// The model's slow span at the back: `[start, end]` (s, the stroke's own clock).
 fn slow_span(stroke: &Stroke) -> (f64, f64) {
@@ -109,7 +97,9 @@ fn metrics_match_the_models_motion() {
     for (noise_mg, seed) in [(3.0, 0x5712_0003u64), (8.0, 0x5712_0008)] {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         for _ in 0..6 {
-            let strokes: Vec<_> = (0..10).map(|_| acceptance_stroke(&mut rng)).collect();
+            let strokes: Vec<_> = (0..10)
+                .map(|_| kinematic::acceptance_stroke(&mut rng))
+                .collect();
             let noise = noise_mg * 1e-3 * kinematic::G;
             let (accel, pitch, truth) = kinematic::stream(&strokes, FS, noise, &mut rng);
             let mut est = StreamingEstimator::new(&StreamConfig::new(FS as f32)).unwrap();

@@ -343,3 +343,16 @@ pub const SCALES: (f32, f32) = (ACCEL_MPS2_PER_LSB, GYRO_RADPS_PER_LSB);
 pub fn uniform(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> f64 {
     rng.random_range(lo..hi)
 }
+
+/// A stroke of the streaming acceptance sets (`tests/streaming.rs`,
+/// `tests/stroke_metrics.rs`): the model's draw, then an address of 0.25–3 s, a pause at
+/// the back of 0–1.5 s and a pendulum tilt of 0.5–2° (1–6 s per stroke), and the still
+/// gap of 0.5–3 s after it.
+pub fn acceptance_stroke(rng: &mut ChaCha8Rng) -> (Stroke, f64) {
+    let mut stroke = Stroke::random(rng);
+    stroke.rest = rng.random_range(0.25..3.0);
+    stroke.pause = rng.random_range(0.0..1.5);
+    stroke.tilt_back = rng.random_range(0.5f64..2.0).to_radians();
+    let gap = rng.random_range(0.5..3.0);
+    (stroke, gap)
+}
