@@ -33,8 +33,8 @@ pub struct FitOptions {
     /// How the 95 % intervals are computed.
     pub intervals: Intervals,
     /// Steps of the compliant reference solver (`--fit mu-v-k`; `ReferenceConfig::steps`)
-    /// for the fit's answer; the search from every start runs at
-    /// [`super::search::COARSE_STEPS`] first.
+    /// for the fit's answer; the search from every start runs at 100 steps first
+    /// (`COARSE_STEPS` in `calibrate/search.rs`).
     pub compliant_steps: usize,
 }
 
