@@ -14,8 +14,8 @@
 //!   `fuzz/corpus-run/<target>/` (git-ignored, kept between local runs), so a run never
 //!   changes the tree. A crashing input goes to `fuzz/artifacts/<target>/` (git-ignored).
 //! * **Output.** libFuzzer's full log goes to `fuzz/target/xtask-logs/<target>.log`; the
-//!   console shows it without the per-input `NEW`/`REDUCE` lines, then a table of the
-//!   executions per target.
+//!   console shows it without the per-input `NEW`/`REDUCE` lines, each line tagged with
+//!   its target (two run at once), then a table of the executions per target.
 
 use std::fs::{self, File};
 use std::io::{BufRead, BufReader, Write};
@@ -94,10 +94,7 @@ fn fuzz_targets(targets: &[String], seconds: u64) -> Result {
     cmd::run(&mut cargo_fuzz("build"))?;
     let build_secs = started.elapsed().as_secs_f64();
     println!("xtask: fuzz targets built in {build_secs:.0} s");
-    let runs: Vec<Run> = targets
-        .iter()
-        .map(|target| run_target(target, seconds))
-        .collect();
+    let runs = run_targets(targets, seconds);
     print_summary(&runs, build_secs);
     let failed: Vec<&Run> = runs.iter().filter(|r| r.failure.is_some()).collect();
     match failed.first() {
@@ -121,6 +118,33 @@ fn fuzz_targets(targets: &[String], seconds: u64) -> Result {
             })
         }
     }
+}
+
+/// Targets running at once. libFuzzer (one job, no `-fork`) keeps one core busy, and CI
+/// has two: two targets side by side take half the wall time, each still its full
+/// `seconds` on a core of its own.
+const CONCURRENT: usize = 2;
+
+/// Runs every target for `seconds`, [`CONCURRENT`] at a time; the runs in `targets`'
+/// order.
+fn run_targets(targets: &[String], seconds: u64) -> Vec<Run> {
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let done = std::sync::Mutex::new(Vec::new());
+    std::thread::scope(|scope| {
+        for _ in 0..CONCURRENT.min(targets.len()) {
+            scope.spawn(|| loop {
+                let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let Some(target) = targets.get(i) else { break };
+                let run = run_target(target, seconds);
+                done.lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .push((i, run));
+            });
+        }
+    });
+    let mut runs = done.into_inner().unwrap_or_else(|e| e.into_inner());
+    runs.sort_by_key(|(i, _)| *i);
+    runs.into_iter().map(|(_, run)| run).collect()
 }
 
 fn fuzz_dir() -> PathBuf {
@@ -205,12 +229,14 @@ fn run_logged(command: &mut Command, log: &Path, limit: Duration, run: &mut Run)
         .map_err(|e| Failure::new(format!("cannot start `{shown}`: {e}")))?;
     let stderr = child.stderr.take().expect("stderr is piped");
     // Read on a thread so the deadline below is kept even if the output stops.
+    let target = run.target.clone();
     let reader = std::thread::spawn(move || {
         let mut lines = Vec::new();
         for line in BufReader::new(stderr).lines() {
             let Ok(line) = line else { break };
             if !is_progress(&line) {
-                eprintln!("{line}");
+                // Two targets run at once: each line says whose it is.
+                eprintln!("[{target}] {line}");
             }
             lines.push(line);
         }

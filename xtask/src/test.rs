@@ -245,15 +245,25 @@ fn check_stack_budget() -> Result {
     }
 }
 
+/// `cargo test` of one `#[ignore]`d end-to-end test of `host-tests/tests/`, with
+/// `--workspace` rather than `-p cuesight-host`: the features are then those of "host:
+/// tests" (which already compiled this binary), where `-p` resolves others (no
+/// `schema` on core, link and sensors) and rebuilt cuesight-host, its dependents and
+/// the test first (150 s of CPU on a fresh clone). Same test, same binary source.
+fn e2e_test(name: &str) -> std::process::Command {
+    let mut test = cmd::cargo();
+    test.args(["test", "--workspace", "--test", name, "--"]);
+    test
+}
+
 /// `host-tests/tests/e2e.rs`, `#[ignore]`d in plain `cargo test` because it needs the
 /// firmware just built; QEMU is wrapped in the test's own deadlines, and the whole
 /// test in a 10-minute limit here.
 fn end_to_end() -> Result {
     tools::ensure_qemu()?;
     let defmt_print = tools::defmt_print()?;
-    let mut test = cmd::cargo();
-    test.args(["test", "-p", "cuesight-host", "--test", "e2e", "--"])
-        .args(["--ignored", "--nocapture"])
+    let mut test = e2e_test("e2e");
+    test.args(["--ignored", "--nocapture"])
         .env("CUESIGHT_FIRMWARE_ELF", qemu::elf_path())
         .env("DEFMT_PRINT", defmt_print);
     cmd::run_with_timeout(&mut test, Duration::from_secs(600))
@@ -266,9 +276,8 @@ fn end_to_end() -> Result {
 fn end_to_end_shot() -> Result {
     tools::ensure_qemu()?;
     let defmt_print = tools::defmt_print()?;
-    let mut test = cmd::cargo();
-    test.args(["test", "-p", "cuesight-host", "--test", "e2e_shot", "--"])
-        .args(["--ignored", "--nocapture"])
+    let mut test = e2e_test("e2e_shot");
+    test.args(["--ignored", "--nocapture"])
         .env("CUESIGHT_FIRMWARE_ELF", qemu::elf_path())
         .env("DEFMT_PRINT", defmt_print);
     cmd::run_with_timeout(&mut test, Duration::from_secs(600))
