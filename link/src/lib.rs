@@ -47,12 +47,13 @@ pub mod shot;
 mod upload;
 
 pub use error::{LinkError, UploadFault};
+pub use frame::{next_seq, UNPROMPTED};
 pub use limits::{MAX_CHUNKS, MAX_OBJECT_BALLS, MAX_SAMPLES, SCHEMA_HASH, STROKE_CAPACITY};
 pub use names::{ModelName, RegimeName, TableName};
 pub use request::{
     Collide, Defaults, Empty, Overrides, Request, ShotRequest, StrokeChunk, StrokeSetup,
 };
 pub use response::{CollideAnswer, Response, StrokeAnswer, VersionAnswer};
-pub use session::{next_seq, Control, Identity, Served, Session, UNPROMPTED};
+pub use session::{Control, Identity, Served, Session};
 pub use shot::ShotAnswer;
 pub use upload::Upload;

@@ -6,27 +6,13 @@ use core::borrow::BorrowMut;
 use cuesight::collide;
 
 use crate::error::{LinkError, SequenceFault, Unsupported};
-use crate::frame::{self, Received, MAX_FRAME};
+use crate::frame::{self, next_seq, Received, MAX_FRAME, UNPROMPTED};
 use crate::limits::{MAX_SAMPLES, SCHEMA_HASH, STROKE_CAPACITY};
 use crate::request::{Collide, Defaults, Request, ShotRequest, StrokeChunk};
 use crate::response::{
     CollideAnswer, InputEcho, ParamsAnswer, Response, ShutdownAnswer, VersionAnswer,
 };
 use crate::upload::{Step, Upload};
-
-/// The sequence number of a frame the device sends unprompted (its `version` at boot):
-/// not an answer to any request. Hosts never number a request with it ([`next_seq`]).
-pub const UNPROMPTED: u16 = u16::MAX;
-
-/// The number after `seq` in a host's count: 0, 1, ..., 0xFFFE, then 0 again
-/// ([`UNPROMPTED`] is skipped, so no answer can be taken for an unprompted frame).
-pub const fn next_seq(seq: u16) -> u16 {
-    if seq >= UNPROMPTED - 1 {
-        0
-    } else {
-        seq + 1
-    }
-}
 
 /// Who the device is, for `version`.
 #[derive(Clone, Copy, Debug)]
