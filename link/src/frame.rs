@@ -58,7 +58,12 @@ pub const fn next_seq(seq: u16) -> u16 {
 
 /// CRC-32/ISO-HDLC, computed bit by bit (no 1 KB table in flash; a 1 KB frame costs a
 /// few tens of thousands of instructions, next to the UART's 90 ms at 115,200 baud).
-const CRC32: Crc<u32, NoTable> = Crc::<u32, NoTable>::new(&CRC_32_ISO_HDLC);
+///
+/// A `static`, not a `const`: [`encode`] is generic, so it is compiled in the crate that
+/// calls it (the device's session is another crate), and a `const` gave each crate its
+/// own copy of the parameters; with one address for every caller, LTO folds them into
+/// the one checksum, which with two copies was compiled for any CRC (126 B more flash).
+static CRC32: Crc<u32, NoTable> = Crc::<u32, NoTable>::new(&CRC_32_ISO_HDLC);
 
 /// The header of a frame whose CRC held.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
