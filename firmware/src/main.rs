@@ -12,9 +12,10 @@
 #![deny(unsafe_code)]
 #![deny(missing_docs)]
 
+use cuesight_device::{Identity, Session, Upload};
 use cuesight_firmware::{board, serve, shots};
 use cuesight_link::frame::{FrameReader, MAX_FRAME};
-use cuesight_link::{Identity, Session, Upload, SCHEMA_HASH};
+use cuesight_link::SCHEMA_HASH;
 use static_cell::{ConstStaticCell, StaticCell};
 
 /// Firmware name and version, as `version` reports them.

@@ -2,8 +2,8 @@
 //! Generic over `embedded_io`, so any board's serial port serves; all link logic is in
 //! `cuesight-link`, tested on the host.
 
+use cuesight_device::{Control, Session, Upload};
 use cuesight_link::frame::FrameReader;
-use cuesight_link::{Control, Session, Upload};
 use embedded_io::{Read, Write};
 
 /// Sends the unprompted `version` frame (the schema hash, for a host that is listening

@@ -28,10 +28,11 @@ mod tests {
         let _board = cuesight_firmware::board::init();
     }
     use cuesight::{collide, math, Impact, Model, Params};
+    use cuesight_device::{Identity, Session, Upload};
     use cuesight_link::error::FrameFault;
     use cuesight_link::frame::{self, FrameReader, Received, MAX_FRAME};
     use cuesight_link::{Collide, SCHEMA_HASH};
-    use cuesight_link::{Empty, Identity, LinkError, Request, Response, Session, Upload};
+    use cuesight_link::{Empty, LinkError, Request, Response};
     use static_cell::ConstStaticCell;
 
     /// The image's own memory routines (`cuesight_firmware::mem`, in place of

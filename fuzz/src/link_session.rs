@@ -20,11 +20,11 @@
 //! still serves: a valid `version` is answered with the version, and a `collide` after
 //! it with a prediction.
 
+use cuesight_device::{Control, Identity, Session};
 use cuesight_link::error::{FrameFault, SequenceFault};
 use cuesight_link::frame::{self, FrameReader, Received, MAX_FRAME};
 use cuesight_link::{
-    Collide, Control, Empty, Identity, LinkError, Request, Response, Session, StrokeChunk,
-    SCHEMA_HASH, UNPROMPTED,
+    Collide, Empty, LinkError, Request, Response, StrokeChunk, SCHEMA_HASH, UNPROMPTED,
 };
 
 use crate::link::{self, Expected};

@@ -407,7 +407,8 @@ pub fn find_defmt_print() -> Option<PathBuf> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use cuesight_link::{Collide, Identity, Session};
+    use cuesight_device::{Identity, Session};
+    use cuesight_link::Collide;
 
     /// What the device's session answers to `bytes`, cut into frames as the harness does.
     fn device_answers(bytes: &[u8]) -> Vec<Incoming> {

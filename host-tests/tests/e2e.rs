@@ -46,15 +46,15 @@ use std::path::Path;
 use std::process::ExitStatus;
 use std::time::{Duration, Instant};
 
+use cuesight_device::{Identity, Session};
 use cuesight_host::firmware::{self, cobs_frame, open_answer, Answer, Firmware, Incoming};
 use cuesight_host::grid;
 use cuesight_host::strokes::{stroke_chunks, synthetic_stroke, synthetic_stroke_of};
 use cuesight_link::error::{FrameFault, SequenceFault};
 use cuesight_link::frame::{self, FrameReader, MAX_FRAME, MAX_RAW};
 use cuesight_link::{
-    Collide, Empty, Identity, LinkError, ModelName, Overrides, Request, Response, Session,
-    StrokeChunk, StrokeSetup, UploadFault, MAX_CHUNKS, MAX_SAMPLES, SCHEMA_HASH, STROKE_CAPACITY,
-    UNPROMPTED,
+    Collide, Empty, LinkError, ModelName, Overrides, Request, Response, StrokeChunk, StrokeSetup,
+    UploadFault, MAX_CHUNKS, MAX_SAMPLES, SCHEMA_HASH, STROKE_CAPACITY, UNPROMPTED,
 };
 use cuesight_sensors::GlitchKind;
 use rand::{Rng, SeedableRng};

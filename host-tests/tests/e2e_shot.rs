@@ -11,12 +11,13 @@
 use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
 
+use cuesight_device::{Identity, Session};
 use cuesight_host::firmware::{
     default_elf, find_defmt_print, open_answer, request_frame, Firmware, Incoming,
 };
 use cuesight_host::shot_scenes::random_body;
 use cuesight_link::frame::{FrameReader, MAX_FRAME};
-use cuesight_link::{Empty, Identity, Request, Response, Session, ShotRequest, UNPROMPTED};
+use cuesight_link::{Empty, Request, Response, ShotRequest, UNPROMPTED};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 

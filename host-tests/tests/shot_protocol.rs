@@ -12,10 +12,11 @@
 use std::collections::BTreeSet;
 use std::process::Command;
 
+use cuesight_device::{Identity, Session};
 use cuesight_host::firmware::{open_answer, request_frame, Incoming};
 use cuesight_host::shot_scenes::random_body;
 use cuesight_link::frame::{FrameReader, MAX_FRAME, MAX_RAW};
-use cuesight_link::{Identity, Request, Response, Session, ShotRequest};
+use cuesight_link::{Request, Response, ShotRequest};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use serde_json::Value;

@@ -154,7 +154,7 @@ pub enum SequenceFault {
 pub enum Unsupported {
     /// `model: reference` runs on the host only.
     ReferenceModel,
-    /// `shot`: the image was built without the `shot` feature.
+    /// `shot`: the image was built without `cuesight-device`'s `shot` feature.
     Shot,
 }
 

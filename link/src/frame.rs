@@ -11,8 +11,9 @@
 //!   zero.
 //! * **schema**: [`crate::SCHEMA_HASH`] of the sender. Fixed width and first, so that a
 //!   peer with another schema can still read it and say so instead of decoding garbage.
-//! * **seq**: the host numbers its requests; the device answers with the number of the
-//!   request it answers (`crate::session` checks the order: duplicates, gaps, reordering).
+//! * **seq**: the host numbers its requests ([`next_seq`]); the device answers with the
+//!   number of the request it answers, or [`UNPROMPTED`] (the device's session checks the
+//!   order: duplicates, gaps, reordering).
 //! * **body**: the message in postcard (varint integers, `f32` as 4 bytes LE).
 //! * **crc**: CRC-32/ISO-HDLC (the Ethernet/zlib CRC, the `crc` crate, table-free) over
 //!   schema, seq and body. Catches every burst error up to 32 bits and all odd numbers of
@@ -41,9 +42,28 @@ pub const HEADER: usize = 6;
 /// Bytes of the CRC.
 const CRC_LEN: usize = 4;
 
+/// The sequence number of a frame the device sends unprompted (its `version` at boot):
+/// not an answer to any request. Hosts never number a request with it ([`next_seq`]).
+pub const UNPROMPTED: u16 = u16::MAX;
+
+/// The number after `seq` in a host's count: 0, 1, ..., 0xFFFE, then 0 again
+/// ([`UNPROMPTED`] is skipped, so no answer can be taken for an unprompted frame).
+pub const fn next_seq(seq: u16) -> u16 {
+    if seq >= UNPROMPTED - 1 {
+        0
+    } else {
+        seq + 1
+    }
+}
+
 /// CRC-32/ISO-HDLC, computed bit by bit (no 1 KB table in flash; a 1 KB frame costs a
 /// few tens of thousands of instructions, next to the UART's 90 ms at 115,200 baud).
-const CRC32: Crc<u32, NoTable> = Crc::<u32, NoTable>::new(&CRC_32_ISO_HDLC);
+///
+/// A `static`, not a `const`: [`encode`] is generic, so it is compiled in the crate that
+/// calls it (the device's session is another crate), and a `const` gave each crate its
+/// own copy of the parameters; with one address for every caller, LTO folds them into
+/// the one checksum, which with two copies was compiled for any CRC (126 B more flash).
+static CRC32: Crc<u32, NoTable> = Crc::<u32, NoTable>::new(&CRC_32_ISO_HDLC);
 
 /// The header of a frame whose CRC held.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -108,8 +108,9 @@ impl InputEcho {
     }
 }
 
-/// Components of `v`, with `-0.0` as `0` (a zero's sign carries no physics).
-pub(crate) fn plain(v: Vec3) -> [f32; 3] {
+/// Components of `v`, with `-0.0` as `0` (a zero's sign carries no physics): how every
+/// vector of an answer is written (the device's stroke estimate uses it too).
+pub fn plain(v: Vec3) -> [f32; 3] {
     v.to_array().map(|c| c + 0.0)
 }
 

@@ -1,7 +1,8 @@
-//! The answer to `shot` (shot guidance; the device computes it in `guide.rs`). It holds the keys of `cuesight shot
-//! --json` but the echo of the scene, which the host has; both are built by
-//! [`cuesight::guidance::guide`], so the numbers are the same. Units: SI in the table
-//! frame, degrees in the keys ending in `_deg` (`docs/protocol.md`).
+//! The answer to `shot` (shot guidance; the device computes it in `cuesight-device`'s
+//! `guide.rs`). It holds the keys of `cuesight shot --json` but the echo of the scene,
+//! which the host has; both are built by [`cuesight::guidance::guide`], so the numbers
+//! are the same. Units: SI in the table frame, degrees in the keys ending in `_deg`
+//! (`docs/protocol.md`).
 
 use serde::{Deserialize, Serialize};
 

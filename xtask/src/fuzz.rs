@@ -7,8 +7,8 @@
 //!   and CI has only the stable toolchain, so the build runs with `RUSTC_BOOTSTRAP=1`,
 //!   which lets a stable rustc accept them. It is set for the cargo-fuzz process only.
 //! * **No sanitizer** (`-s none`): the crates fuzzed deny `unsafe` code (core, link,
-//!   sensors), so AddressSanitizer would find little, and the runs do about twice the
-//!   executions without it. Debug assertions and overflow checks stay on (cargo-fuzz's default).
+//!   device, sensors), so AddressSanitizer would find little, and the runs do about twice
+//!   the executions without it. Debug assertions and overflow checks stay on (cargo-fuzz's default).
 //! * **Corpora.** The committed seeds (`fuzz/corpus/<target>/`) are read only: libFuzzer
 //!   writes what it finds into the first corpus directory it is given, a scratch one,
 //!   `fuzz/corpus-run/<target>/` (git-ignored, kept between local runs), so a run never

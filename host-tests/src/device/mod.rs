@@ -84,7 +84,8 @@ pub struct Flags {
     /// or CUESIGHT_FIRMWARE_ELF]; its defmt log follows on stderr.
     #[arg(long, value_name = "ELF", num_args = 0..=1)]
     pub qemu: Option<Option<PathBuf>>,
-    /// A device in this process (the link's Session), to try the console.
+    /// A device in this process (cuesight-device's Session, as the firmware runs it), to
+    /// try the console.
     #[arg(long)]
     pub loopback: bool,
     /// Play this session file (one request per line; `#` headings, `##` comments,

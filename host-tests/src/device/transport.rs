@@ -5,7 +5,7 @@
 //!   `-serial tcp::PORT,server`). Frames are cut by a [`FrameReader`], which never keeps
 //!   more than `MAX_RAW` bytes of one.
 //! * [`Qemu`]: the firmware booted under QEMU ([`crate::firmware::Firmware`]).
-//! * [`Loopback`]: a device in this process ([`cuesight_link::Session`]), for trying the
+//! * [`Loopback`]: a device in this process ([`cuesight_device::Session`]), for trying the
 //!   console and for tests.
 
 use std::collections::VecDeque;
@@ -14,8 +14,8 @@ use std::io::{self, Read, Write};
 use std::net::TcpStream;
 use std::time::{Duration, Instant};
 
+use cuesight_device::{Control, Identity, Session};
 use cuesight_link::frame::{FrameReader, MAX_FRAME};
-use cuesight_link::{Control, Identity, Session};
 
 use crate::firmware::{Firmware, FirmwareError, Incoming};
 
@@ -211,9 +211,9 @@ impl Transport for Qemu {
     }
 }
 
-/// A device in this process: the link's [`Session`] behind a [`FrameReader`], as the
-/// firmware runs it. It sends the unprompted `version` frame first, like a booted
-/// device, and closes after answering `shutdown`.
+/// A device in this process: the device's [`Session`] (`cuesight-device`) behind a
+/// [`FrameReader`], as the firmware runs it. It sends the unprompted `version` frame
+/// first, like a booted device, and closes after answering `shutdown`.
 pub struct Loopback {
     device: Session,
     reader: FrameReader,

@@ -11,13 +11,13 @@
 //! ([`FrameReader`], [`frame::open`], [`frame::decode`]), and its schema, sequence
 //! number and the `Served` report are checked against it.
 
+use cuesight_device::{Control, Identity, Session};
 use cuesight_link::error::{FrameFault, SequenceFault};
 use cuesight_link::frame::{self, FrameReader, Received, MAX_FRAME, MAX_RAW};
 use cuesight_link::response::ParamsAnswer;
 use cuesight_link::{
-    Collide, Control, Defaults, Empty, Identity, LinkError, Overrides, Request, Response, Session,
-    StrokeAnswer, StrokeChunk, StrokeSetup, UploadFault, MAX_CHUNKS, MAX_SAMPLES, SCHEMA_HASH,
-    STROKE_CAPACITY, UNPROMPTED,
+    Collide, Defaults, Empty, LinkError, Overrides, Request, Response, StrokeAnswer, StrokeChunk,
+    StrokeSetup, UploadFault, MAX_CHUNKS, MAX_SAMPLES, SCHEMA_HASH, STROKE_CAPACITY, UNPROMPTED,
 };
 use cuesight_sensors::GlitchKind;
 

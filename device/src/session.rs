@@ -5,28 +5,15 @@ use core::borrow::BorrowMut;
 
 use cuesight::collide;
 
-use crate::error::{LinkError, SequenceFault, Unsupported};
-use crate::frame::{self, Received, MAX_FRAME};
-use crate::limits::{MAX_SAMPLES, SCHEMA_HASH, STROKE_CAPACITY};
-use crate::request::{Collide, Defaults, Request, ShotRequest, StrokeChunk};
-use crate::response::{
+use cuesight_link::error::{LinkError, SequenceFault, Unsupported};
+use cuesight_link::frame::{self, next_seq, Received, MAX_FRAME, UNPROMPTED};
+use cuesight_link::request::{Collide, Defaults, Request, ShotRequest, StrokeChunk};
+use cuesight_link::response::{
     CollideAnswer, InputEcho, ParamsAnswer, Response, ShutdownAnswer, VersionAnswer,
 };
+use cuesight_link::{MAX_SAMPLES, SCHEMA_HASH, STROKE_CAPACITY};
+
 use crate::upload::{Step, Upload};
-
-/// The sequence number of a frame the device sends unprompted (its `version` at boot):
-/// not an answer to any request. Hosts never number a request with it ([`next_seq`]).
-pub const UNPROMPTED: u16 = u16::MAX;
-
-/// The number after `seq` in a host's count: 0, 1, ..., 0xFFFE, then 0 again
-/// ([`UNPROMPTED`] is skipped, so no answer can be taken for an unprompted frame).
-pub const fn next_seq(seq: u16) -> u16 {
-    if seq >= UNPROMPTED - 1 {
-        0
-    } else {
-        seq + 1
-    }
-}
 
 /// Who the device is, for `version`.
 #[derive(Clone, Copy, Debug)]
@@ -108,7 +95,7 @@ impl<U: BorrowMut<Upload>> Session<U> {
         frame::encode(SCHEMA_HASH, UNPROMPTED, &answer, out).unwrap_or(0)
     }
 
-    /// Answers one received frame (from a [`crate::frame::FrameReader`]) into `out`,
+    /// Answers one received frame (from a [`cuesight_link::frame::FrameReader`]) into `out`,
     /// which should hold [`MAX_FRAME`] bytes.
     ///
     /// Each answer is encoded where it is computed, in the frame of the function that
@@ -287,7 +274,7 @@ impl<U: BorrowMut<Upload>> Session<U> {
 }
 
 /// `text` as a short name; empty if it does not fit (the names are the firmware's own
-/// constants, well within [`crate::response::NAME_LEN`]).
+/// constants, well within [`cuesight_link::response::NAME_LEN`]).
 fn short_name<const N: usize>(text: &str) -> heapless::String<N> {
     heapless::String::try_from(text).unwrap_or_default()
 }

@@ -1,15 +1,16 @@
 //! `shot` on the device: a request validated against the session defaults, played or
 //! solved by [`cuesight::guidance::guide`], and its guidance turned into the
-//! [`crate::shot::ShotAnswer`] (whose types are in `shot.rs`, shared with the host).
+//! [`cuesight_link::shot::ShotAnswer`] (whose types are in the link's schema, shared
+//! with the host).
 
 use cuesight::guidance::{guide, Aim, BallPath, Guidance, Target};
 use cuesight::table::{BallSet, Scene, Table};
 use cuesight::{shot::ShotSetup, strike::TipOffset, travel::Cloth, Vec3};
 
-use crate::error::{LinkError, Unsupported};
-use crate::names::{ModelName, ShotMode, TableName};
-use crate::request::{cue, Defaults, Overrides, ShotRequest};
-use crate::{response::Response, shot::*};
+use cuesight_link::error::{LinkError, Unsupported};
+use cuesight_link::names::{ModelName, ShotMode, TableName};
+use cuesight_link::request::{cue, Defaults, Overrides, ShotRequest};
+use cuesight_link::{response::Response, shot::*};
 
 /// `[x, y]` of a vector.
 fn xy(v: Vec3) -> [f32; 2] {

@@ -7,10 +7,10 @@ use cuesight::Params;
 use cuesight_sensors::{estimate_raw, find_glitch, StrokeConfig, ACCEL_MPS2_PER_LSB};
 use heapless::Vec;
 
-use crate::error::{LinkError, UploadFault};
-use crate::limits::{MAX_CHUNKS, STROKE_CAPACITY};
-use crate::request::{cue, StrokeChunk, StrokeSetup};
-use crate::response::{plain, StrokeAnswer, StrokeProgress};
+use cuesight_link::error::{LinkError, UploadFault};
+use cuesight_link::request::{cue, StrokeChunk, StrokeSetup};
+use cuesight_link::response::{plain, StrokeAnswer, StrokeProgress};
+use cuesight_link::{MAX_CHUNKS, STROKE_CAPACITY};
 
 /// The stroke being uploaded: 10 KB of samples, all zero when new (see
 /// [`crate::Session::with_upload`]).
