@@ -13,15 +13,17 @@ fn main() {
     fs::copy(&memory_x, out.join("memory.x"))
         .unwrap_or_else(|e| panic!("copying {} into OUT_DIR: {e}", memory_x.display()));
     // The QEMU board has its own interrupt vectors (src/board/qemu/vectors.rs), so
-    // cortex-m-rt's `device` feature is on, and its link.x includes a `device.x`: empty
-    // here, as the vectors name no handler but `DefaultHandler`. (The nrf52840 board's
-    // comes with its device crate, nrf52840-pac.)
+    // cortex-m-rt's `device` feature is on, and its link.x includes a `device.x`: here
+    // it provides `DefaultHandler` for each named line a build leaves without a handler
+    // (as an svd2rust crate's does). (The nrf52840 board's comes with nrf52840-pac.)
     if env::var_os("CARGO_FEATURE_QEMU").is_some() {
-        fs::write(
-            out.join("device.x"),
-            "/* QEMU mps2-an386: no device-specific handler names (src/board/qemu/vectors.rs). */\n",
-        )
-        .unwrap_or_else(|e| panic!("writing device.x into OUT_DIR: {e}"));
+        let lines = ["UART0RX", "UART1RX", "TIMER1", "DUALTIMER"];
+        let provide: String = lines
+            .iter()
+            .map(|line| format!("PROVIDE({line} = DefaultHandler);\n"))
+            .collect();
+        fs::write(out.join("device.x"), provide)
+            .unwrap_or_else(|e| panic!("writing device.x into OUT_DIR: {e}"));
     }
     println!("cargo:rustc-link-search={}", out.display());
     println!("cargo:rerun-if-changed={}", memory_x.display());

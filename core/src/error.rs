@@ -184,6 +184,9 @@ pub enum Error {
     /// A computed output was not finite. Guarded against by construction and never
     /// observed on the test grids; reported rather than returned as NaN.
     NumericalFailure,
+    /// The model asked for was left out of this build ([`crate::Model::built`]; the
+    /// `seed-exact` feature), as on the device.
+    ModelLeftOut,
 }
 
 impl Error {
@@ -191,7 +194,7 @@ impl Error {
     pub const fn field(&self) -> Option<Field> {
         match self {
             Error::NotFinite { field } | Error::OutOfRange { field, .. } => Some(*field),
-            Error::NumericalFailure => None,
+            Error::NumericalFailure | Error::ModelLeftOut => None,
         }
     }
 }
@@ -211,6 +214,9 @@ impl fmt::Display for Error {
             }
             Error::NumericalFailure => {
                 f.write_str("internal numerical failure (non-finite result)")
+            }
+            Error::ModelLeftOut => {
+                f.write_str("this model was left out of this build (cargo feature `seed-exact`)")
             }
         }
     }

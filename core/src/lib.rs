@@ -44,6 +44,7 @@ mod model;
 mod outcome;
 mod params;
 mod real;
+#[cfg(feature = "seed-exact")]
 mod seed_exact;
 pub mod shot;
 pub mod strike;

@@ -74,6 +74,13 @@ impl Model {
         Model::Exact,
     ];
 
+    /// Whether this build evaluates the model: all but `SeedExact` without the
+    /// `seed-exact` feature, which [`crate::collide`] answers with
+    /// [`Error::ModelLeftOut`](crate::Error::ModelLeftOut).
+    pub const fn built(self) -> bool {
+        !matches!(self, Model::SeedExact) || cfg!(feature = "seed-exact")
+    }
+
     /// Lower-case, hyphenated name (`ideal`, `kim`, `kim-grip`, `seed-exact`, `exact`).
     #[inline(never)]
     pub const fn name(self) -> &'static str {
@@ -142,7 +149,10 @@ pub fn collide_in<R: Real>(params: &Params, impact: &Impact, model: Model) -> Re
         Model::Ideal => crate::ideal::collide::<R>(params, impact),
         Model::Kim => crate::kim::collide::<R>(params, impact),
         Model::KimGrip => crate::kim_grip::collide::<R>(params, impact),
+        #[cfg(feature = "seed-exact")]
         Model::SeedExact => crate::seed_exact::collide::<R>(params, impact),
+        #[cfg(not(feature = "seed-exact"))]
+        Model::SeedExact => Err(crate::Error::ModelLeftOut),
         Model::Exact => crate::exact::collide::<R>(params, impact),
         Model::Auto { tolerance } => auto::<R>(params, impact, tolerance),
     }

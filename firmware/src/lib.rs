@@ -10,6 +10,7 @@
 
 pub mod board;
 mod exit;
+pub mod live;
 pub mod mem;
 pub mod serve;
 pub mod shots;

@@ -41,3 +41,68 @@ pub fn serve<S: Read + Write>(
         }
     }
 }
+
+/// The link's serial port on the QEMU board, for [`serve`]: UART0, shared with the
+/// tasks that send unprompted frames (an RTIC resource, locked per access). `read`
+/// sleeps in `wfi` until a byte arrives; the UART0 receive task only acknowledges the
+/// interrupt, so the byte waits in the UART (QEMU holds the next one back meanwhile).
+#[cfg(feature = "qemu")]
+pub struct LinkPort<M> {
+    link: M,
+}
+
+#[cfg(feature = "qemu")]
+impl<M: rtic::Mutex<T = crate::board::uart::Uart>> LinkPort<M> {
+    /// The port over the shared UART.
+    pub fn new(link: M) -> Self {
+        Self { link }
+    }
+}
+
+#[cfg(feature = "qemu")]
+impl<M> embedded_io::ErrorType for LinkPort<M> {
+    type Error = core::convert::Infallible;
+}
+
+#[cfg(feature = "qemu")]
+impl<M: rtic::Mutex<T = crate::board::uart::Uart>> Read for LinkPort<M> {
+    fn read(&mut self, buf: &mut [u8]) -> Result<usize, Self::Error> {
+        if buf.is_empty() {
+            return Ok(0);
+        }
+        loop {
+            let count = self.link.lock(|uart| {
+                let mut count = 0;
+                for slot in buf.iter_mut() {
+                    let Some(byte) = uart.try_read() else { break };
+                    *slot = byte;
+                    count += 1;
+                }
+                count
+            });
+            if count > 0 {
+                return Ok(count);
+            }
+            // Checked with interrupts masked: a byte arriving after the check pends the
+            // receive interrupt, which ends the `wfi` (and runs once unmasked).
+            let link = &mut self.link;
+            cortex_m::interrupt::free(|_| {
+                if !link.lock(|uart| uart.rx_full()) {
+                    cortex_m::asm::wfi();
+                }
+            });
+        }
+    }
+}
+
+#[cfg(feature = "qemu")]
+impl<M: rtic::Mutex<T = crate::board::uart::Uart>> Write for LinkPort<M> {
+    fn write(&mut self, buf: &[u8]) -> Result<usize, Self::Error> {
+        self.link.lock(|uart| uart.write_all(buf));
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> Result<(), Self::Error> {
+        Ok(())
+    }
+}

@@ -86,8 +86,22 @@ impl Shot {
     }
 }
 
+/// Models this image evaluates ([`Model::built`]).
+const BUILT_MODELS: usize = {
+    let mut count = 0;
+    let mut i = 0;
+    while i < Model::ALL.len() {
+        if Model::ALL[i].built() {
+            count += 1;
+        }
+        i += 1;
+    }
+    count
+};
+
 /// Runs every shot with every model, logs the outcomes and returns how many failed.
 pub fn run_all() -> u32 {
+    // The image leaves `SeedExact` out (`Cargo.toml`): every other model is checked.
     let mut failures = 0;
     for shot in &SHOTS {
         let impact = match shot.impact() {
@@ -95,11 +109,11 @@ pub fn run_all() -> u32 {
             Err(_) => {
                 // The shots are constants inside every range: this is a broken build.
                 defmt::error!("{=str}: invalid impact", shot.name);
-                failures += Model::ALL.len() as u32;
+                failures += BUILT_MODELS as u32;
                 continue;
             }
         };
-        for model in Model::ALL {
+        for model in Model::ALL.into_iter().filter(|model| model.built()) {
             match collide(&PARAMS, &impact, model) {
                 Ok(out) => {
                     log(shot, model, &out);
@@ -122,7 +136,7 @@ pub fn run_all() -> u32 {
     if failures == 0 {
         defmt::info!(
             "boot self-test: all {=usize} outcomes finite and sane",
-            SHOTS.len() * Model::ALL.len()
+            SHOTS.len() * BUILT_MODELS
         );
     } else {
         defmt::error!("{=u32} outcome(s) failed their checks", failures);

@@ -187,6 +187,16 @@ impl Firmware {
     /// Boots `elf`. With `defmt_print`, the log is decoded as it arrives. The firmware's
     /// unprompted `version` frame is the first [`Firmware::next_frame`].
     pub fn boot(elf: &Path, defmt_print: Option<&Path>) -> Result<Self, FirmwareError> {
+        Self::boot_command(elf, defmt_print, qemu_command(elf))
+    }
+
+    /// Boots `elf` with the QEMU command `qemu` (what [`qemu_command`] gives, with more
+    /// options or another working directory: `crate::live`).
+    pub fn boot_command(
+        elf: &Path,
+        defmt_print: Option<&Path>,
+        mut qemu: Command,
+    ) -> Result<Self, FirmwareError> {
         if !elf.is_file() {
             return Err(FirmwareError::Io(io::Error::new(
                 io::ErrorKind::NotFound,
@@ -196,7 +206,7 @@ impl Firmware {
                 ),
             )));
         }
-        let mut qemu = qemu_command(elf)
+        let mut qemu = qemu
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())

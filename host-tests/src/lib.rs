@@ -8,6 +8,7 @@ pub mod domain;
 pub mod firmware;
 pub mod grid;
 pub mod invariants;
+pub mod live;
 pub mod live_trace;
 pub mod reference;
 pub mod report;

@@ -6,6 +6,8 @@
 //! * `cargo xtask test` — every check: host fmt/clippy/tests, core for the target,
 //!   firmware fmt/clippy/build and size, the demo session and the end-to-end test in
 //!   QEMU.
+//! * `cargo xtask live --trace FILE [--odr HZ] [--plan FILE]` — play an IMU trace
+//!   through the firmware's emulated IMU in QEMU; one JSON line per detected stroke.
 //! * `cargo xtask docs [--check]` — regenerate the figures of README.md and docs/ that
 //!   commands produce (generated blocks); `--check` fails on any that is stale.
 //! * `cargo xtask fuzz [--seconds N] [TARGET...]` — the cargo-fuzz targets of `fuzz/`,
@@ -19,6 +21,7 @@ mod docs;
 mod format;
 mod fuzz;
 mod lines;
+mod live;
 mod python;
 mod qemu;
 mod size;
@@ -60,6 +63,9 @@ enum Command {
         #[arg(long, value_name = "ELF")]
         elf: Option<std::path::PathBuf>,
     },
+    /// Play an IMU trace (CSV, raw LSM6DSOX words) through the firmware's emulated IMU
+    /// in QEMU; print one JSON line per stroke the device detects, then a summary.
+    Live(live::Args),
     /// Measure every model x backend x precision (Cortex-M4 instructions under QEMU, host
     /// ns, error on the grid); write target/bench/tradeoff.{json,md,svg} (with
     /// --update-docs, the report and plot over docs/tradeoff.{md,svg}).
@@ -102,6 +108,7 @@ fn main() -> ExitCode {
                 }
             }),
         Command::Test { keep_going } => test::run_all(keep_going),
+        Command::Live(args) => live::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Docs(args) => docs::run(&args),
         Command::Fuzz(args) => fuzz::run(&args),

@@ -5,8 +5,9 @@
 //! * `NAME: &str` — the board, as the `version` answer reports it;
 //! * `init() -> Board` — takes the peripherals, sets up the clocks, the defmt logger
 //!   and the serial port;
-//! * `Board::serial` — the protocol's byte stream: a type implementing
-//!   `embedded_io::Read + Write` (blocking; `read` returns at least one byte);
+//! * `Board` — the peripherals: on `nrf52840`, `serial`, the protocol's byte stream
+//!   (`embedded_io::Read + Write`, blocking); on `qemu`, `link` and `trace`, the
+//!   UARTs the RTIC app (`app.rs`) serves the link on and takes the IMU trace from;
 //! * `exit(success: bool) -> !` — ends the program (under QEMU: QEMU's exit code);
 //! * `peak_stack() -> (u32, u32)` — the most stack used so far and the stack's size, in
 //!   bytes (stack painting);
@@ -28,7 +29,7 @@ mod stack;
 #[cfg(feature = "qemu")]
 mod qemu;
 #[cfg(feature = "qemu")]
-pub use qemu::{exit, init, peak_stack, uptime_us, NAME};
+pub use qemu::{exit, init, pac, peak_stack, timers, trace_file, uart, uptime_us, Board, NAME};
 
 #[cfg(feature = "nrf52840")]
 mod nrf52840;
