@@ -43,6 +43,33 @@ pub fn answer(request: &ShotRequest, defaults: &Defaults) -> Result<Response, Li
     }
 }
 
+/// The live cue's planned shot (`plan`) played at a measured `cue_speed`: the `shot`
+/// answer of `plan` with its `speed` replaced.
+#[inline(never)]
+pub fn play_plan(
+    plan: &ShotRequest,
+    cue_speed: f32,
+    defaults: &Defaults,
+) -> Result<ShotAnswer, LinkError> {
+    let prepared = prepare(plan, defaults);
+    let (scene, tip, aim, setup, model) = match prepared {
+        Ok(ref prepared) => prepared,
+        Err(error) => return Err(error),
+    };
+    match run_guide(scene, cue_speed, *tip, *aim, setup) {
+        Ok(ref guidance) => Ok(from_guidance(plan.tip, *model, guidance)),
+        Err(error) => Err(error.into()),
+    }
+}
+
+/// Checks a plan as `shot` would, without playing it: the scene, the parameters, the
+/// aim or pocket, and its `speed` (a cue speed the core takes).
+pub fn check(plan: &ShotRequest, defaults: &Defaults) -> Result<(), LinkError> {
+    let (_, tip, ..) = prepare(plan, defaults)?;
+    cuesight::shot::Stroke::at_angle(plan.speed, tip, 0.0)?;
+    Ok(())
+}
+
 /// [`guide`] in a frame of its own.
 #[inline(never)]
 fn run_guide(

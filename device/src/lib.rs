@@ -45,5 +45,5 @@ mod guide;
 mod session;
 mod upload;
 
-pub use session::{Control, Identity, Served, Session};
+pub use session::{live_frame, Control, Identity, Served, Session};
 pub use upload::Upload;

@@ -7,11 +7,12 @@ use cuesight::collide;
 
 use cuesight_link::error::{LinkError, SequenceFault, Unsupported};
 use cuesight_link::frame::{self, next_seq, Received, MAX_FRAME, UNPROMPTED};
+use cuesight_link::live::LiveReport;
 use cuesight_link::request::{Collide, Defaults, Request, ShotRequest, StrokeChunk};
 use cuesight_link::response::{
     CollideAnswer, InputEcho, ParamsAnswer, Response, ShutdownAnswer, VersionAnswer,
 };
-use cuesight_link::{MAX_SAMPLES, SCHEMA_HASH, STROKE_CAPACITY};
+use cuesight_link::{ShotAnswer, MAX_SAMPLES, SCHEMA_HASH, STROKE_CAPACITY};
 
 use crate::upload::{Step, Upload};
 
@@ -52,6 +53,9 @@ pub struct Served {
 /// temporary on the stack.
 pub struct Session<U: BorrowMut<Upload> = Upload> {
     defaults: Defaults,
+    /// The live cue's planned shot (`plan`; never set without the `shot` feature).
+    #[cfg_attr(not(feature = "shot"), allow(dead_code))]
+    plan: Option<ShotRequest>,
     identity: Identity,
     upload: U,
     last_seq: Option<u16>,
@@ -71,6 +75,7 @@ impl<U: BorrowMut<Upload>> Session<U> {
     pub const fn with_upload(identity: Identity, upload: U) -> Self {
         Self {
             defaults: Defaults::POOL,
+            plan: None,
             identity,
             upload,
             last_seq: None,
@@ -198,6 +203,7 @@ impl<U: BorrowMut<Upload>> Session<U> {
             }
             Request::Stroke(chunk) => self.stroke(chunk, seq, out)?,
             Request::Shot(shot) => self.shot(shot, seq, out)?,
+            Request::Plan(plan) => self.plan(plan.as_ref(), seq, out)?,
             Request::Shutdown(_) => {
                 control = Control::Shutdown;
                 let counts = ShutdownAnswer {
@@ -238,6 +244,43 @@ impl<U: BorrowMut<Upload>> Session<U> {
     #[cfg(not(feature = "shot"))]
     fn shot(&self, _: &ShotRequest, _: u16, _: &mut [u8]) -> Result<usize, LinkError> {
         Err(LinkError::Unsupported(Unsupported::Shot))
+    }
+
+    /// `plan`: checked (the scene, the aim or pocket, and the speed it carries) against
+    /// the defaults in force, then kept; `None` forgets it.
+    #[cfg(feature = "shot")]
+    #[inline(never)]
+    fn plan(
+        &mut self,
+        plan: Option<&ShotRequest>,
+        seq: u16,
+        out: &mut [u8],
+    ) -> Result<usize, LinkError> {
+        if let Some(plan) = plan {
+            crate::guide::check(plan, &self.defaults)?;
+        }
+        self.plan = plan.cloned();
+        send(seq, &Response::Plan(self.plan.is_some()), out)
+    }
+
+    #[cfg(not(feature = "shot"))]
+    fn plan(&mut self, _: Option<&ShotRequest>, _: u16, _: &mut [u8]) -> Result<usize, LinkError> {
+        Err(LinkError::Unsupported(Unsupported::Shot))
+    }
+
+    /// The planned shot played at `cue_speed` (a stroke the live cue measured), with
+    /// the defaults in force; `None` when no plan is set.
+    #[cfg(feature = "shot")]
+    #[inline(never)]
+    pub fn plan_guidance(&self, cue_speed: f32) -> Option<Result<ShotAnswer, LinkError>> {
+        let plan = self.plan.as_ref()?;
+        Some(crate::guide::play_plan(plan, cue_speed, &self.defaults))
+    }
+
+    /// Without the `shot` feature there is no plan.
+    #[cfg(not(feature = "shot"))]
+    pub fn plan_guidance(&self, _: f32) -> Option<Result<ShotAnswer, LinkError>> {
+        None
     }
 
     /// Adds a chunk to the upload; on the last one, estimates and clears it.
@@ -282,6 +325,12 @@ fn short_name<const N: usize>(text: &str) -> heapless::String<N> {
 /// What [`Session::answer`] did: the answer's length, the request's name and what
 /// next; or the error to send.
 type Answered = Result<(usize, &'static str, Control), LinkError>;
+
+/// A live report as an unprompted frame, into `out` ([`MAX_FRAME`] bytes); 0 if it
+/// does not fit.
+pub fn live_frame(report: LiveReport, out: &mut [u8]) -> usize {
+    send(UNPROMPTED, &Response::Live(report), out).unwrap_or(0)
+}
 
 /// Encodes `response` as the answer to frame `seq`.
 fn send(seq: u16, response: &Response, out: &mut [u8]) -> Result<usize, LinkError> {

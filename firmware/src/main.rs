@@ -8,15 +8,16 @@
 //! request, after which it exits with success. Panics and faults exit with failure
 //! (`exit.rs`). Boots under QEMU's `mps2-an386`: `cargo xtask run`.
 //!
-//! On QEMU the firmware is an RTIC 2 application (`app.rs`): besides the link it
-//! samples the emulated IMU and reports each stroke (the live cue, issue 15). The
-//! nrf52840 board serves the link alone (`blocking.rs`) until its IMU is wired.
+//! With the `live` feature (QEMU only) the firmware is an RTIC 2 application
+//! (`app.rs`): besides the link it samples the emulated IMU and reports each stroke
+//! (the live cue, issue 15). Without it, it serves the link alone from `main`
+//! (`blocking.rs`).
 #![no_std]
 #![no_main]
 #![deny(unsafe_code)]
 #![deny(missing_docs)]
 
-#[cfg(feature = "qemu")]
+#[cfg(feature = "live")]
 mod app;
-#[cfg(feature = "nrf52840")]
+#[cfg(not(feature = "live"))]
 mod blocking;

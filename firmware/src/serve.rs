@@ -1,9 +1,9 @@
-//! The serial loop: bytes in, frames through the link's [`Session`], answer frames out.
-//! Generic over `embedded_io`, so any board's serial port serves; all link logic is in
-//! `cuesight-link`, tested on the host.
+//! The serial loop: bytes in, frames through the device's [`cuesight_device::Session`], answer frames
+//! out. Generic over `embedded_io`, so any board's serial port serves; all link logic
+//! is in `cuesight-device` and `cuesight-link`, tested on the host.
 
-use cuesight_device::{Control, Session, Upload};
-use cuesight_link::frame::FrameReader;
+use cuesight_device::{Control, Served};
+use cuesight_link::frame::{FrameReader, Received};
 use embedded_io::{Read, Write};
 
 /// Sends the unprompted `version` frame (the schema hash, for a host that is listening
@@ -11,15 +11,17 @@ use embedded_io::{Read, Write};
 /// or the serial port fails (`Err`). Every frame (a `0x00` ends it) gets exactly one
 /// answer frame, in order; a frame that cannot be read gets a typed error answer.
 ///
-/// The buffers come from the caller (statics in `main.rs`): a frame reader and an
-/// answer buffer are a kilobyte each, too much for the stack budget.
+/// `answer_frame` answers one frame into the buffer (a [`cuesight_device::Session::serve`], through
+/// whatever lock the board's tasks need). The buffers come from the caller (statics):
+/// a frame reader and an answer buffer are a kilobyte each, too much for the stack
+/// budget.
 pub fn serve<S: Read + Write>(
     serial: &mut S,
-    session: &mut Session<&'static mut Upload>,
+    hello: usize,
     frames: &mut FrameReader,
     answer: &mut [u8],
+    mut answer_frame: impl FnMut(Received<'_>, &mut [u8]) -> Served,
 ) -> Result<(), S::Error> {
-    let hello = session.hello(answer);
     serial.write_all(answer.get(..hello).unwrap_or_default())?;
     let mut chunk = [0u8; 64];
     loop {
@@ -28,7 +30,7 @@ pub fn serve<S: Read + Write>(
             let Some(frame) = frames.push(byte) else {
                 continue;
             };
-            let served = session.serve(frame, answer);
+            let served = answer_frame(frame, answer);
             match served.outcome {
                 Ok(request) => defmt::debug!("{=str}: answered", request),
                 Err(error) => defmt::debug!("error answer: {}", error),
@@ -46,12 +48,12 @@ pub fn serve<S: Read + Write>(
 /// tasks that send unprompted frames (an RTIC resource, locked per access). `read`
 /// sleeps in `wfi` until a byte arrives; the UART0 receive task only acknowledges the
 /// interrupt, so the byte waits in the UART (QEMU holds the next one back meanwhile).
-#[cfg(feature = "qemu")]
+#[cfg(feature = "live")]
 pub struct LinkPort<M> {
     link: M,
 }
 
-#[cfg(feature = "qemu")]
+#[cfg(feature = "live")]
 impl<M: rtic::Mutex<T = crate::board::uart::Uart>> LinkPort<M> {
     /// The port over the shared UART.
     pub fn new(link: M) -> Self {
@@ -59,12 +61,12 @@ impl<M: rtic::Mutex<T = crate::board::uart::Uart>> LinkPort<M> {
     }
 }
 
-#[cfg(feature = "qemu")]
+#[cfg(feature = "live")]
 impl<M> embedded_io::ErrorType for LinkPort<M> {
     type Error = core::convert::Infallible;
 }
 
-#[cfg(feature = "qemu")]
+#[cfg(feature = "live")]
 impl<M: rtic::Mutex<T = crate::board::uart::Uart>> Read for LinkPort<M> {
     fn read(&mut self, buf: &mut [u8]) -> Result<usize, Self::Error> {
         if buf.is_empty() {
@@ -95,7 +97,7 @@ impl<M: rtic::Mutex<T = crate::board::uart::Uart>> Read for LinkPort<M> {
     }
 }
 
-#[cfg(feature = "qemu")]
+#[cfg(feature = "live")]
 impl<M: rtic::Mutex<T = crate::board::uart::Uart>> Write for LinkPort<M> {
     fn write(&mut self, buf: &[u8]) -> Result<usize, Self::Error> {
         self.link.lock(|uart| uart.write_all(buf));

@@ -213,6 +213,8 @@ fn kind(response: &Response) -> &'static str {
         Response::StrokeChunk(_) => "stroke_chunk",
         Response::Stroke(_) => "stroke",
         Response::Shot(_) => "shot",
+        Response::Plan(_) => "plan",
+        Response::Live(_) => "live",
         Response::Shutdown(_) => "shutdown",
         Response::Error(_) => "error",
     }

@@ -32,6 +32,7 @@
 pub mod error;
 pub mod frame;
 mod limits;
+pub mod live;
 pub mod names;
 pub mod request;
 pub mod response;

@@ -29,6 +29,9 @@ pub enum Request {
     Stroke(StrokeChunk),
     /// Shot guidance (`cuesight shot`).
     Shot(ShotRequest),
+    /// The planned shot for the live cue, kept for the strokes that follow (`speed` is
+    /// each stroke's; the plan is checked at its own); `null` forgets it.
+    Plan(Option<ShotRequest>),
     /// End the session: the device answers, then exits.
     Shutdown(Empty),
 }
@@ -42,6 +45,7 @@ impl Request {
             Request::Params(_) => "params",
             Request::Stroke(_) => "stroke",
             Request::Shot(_) => "shot",
+            Request::Plan(_) => "plan",
             Request::Shutdown(_) => "shutdown",
         }
     }

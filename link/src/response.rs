@@ -7,6 +7,7 @@ use heapless::String;
 use serde::{Deserialize, Serialize};
 
 use crate::error::LinkError;
+use crate::live::LiveReport;
 use crate::names::{ModelName, RegimeName};
 use crate::request::{law_components, Collide, Defaults, PreparedCollide};
 use crate::shot::ShotAnswer;
@@ -32,6 +33,10 @@ pub enum Response {
     Stroke(StrokeAnswer),
     /// To `shot`.
     Shot(ShotAnswer),
+    /// To `plan`: whether a plan is now set.
+    Plan(bool),
+    /// Sent unprompted by the live cue: a stroke, a fault, the end of a trace.
+    Live(LiveReport),
     /// To `shutdown`, just before the device exits.
     Shutdown(ShutdownAnswer),
     /// To anything that could not be answered.

@@ -33,7 +33,8 @@ use cuesight_link::{
     ShotRequest, StrokeAnswer, StrokeChunk, StrokeSetup, UploadFault, VersionAnswer,
     MAX_OBJECT_BALLS, MAX_SAMPLES, SCHEMA_HASH,
 };
-use cuesight_sensors::{ConfigField, GlitchKind, StrokeError};
+use cuesight_link::live::{LiveReport, LiveStroke, SensorFault, StrokeMetrics, TraceEnd};
+use cuesight_sensors::{ConfigField, GlitchKind, StreamFault, StrokeError};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 use serde::de::DeserializeOwned;
@@ -624,6 +625,7 @@ fn core_errors() -> BoxedStrategy<CoreError> {
         (units::<Field>(), f32s())
             .prop_map(|(field, value)| CoreError::OutOfRange { field, value }),
         Just(CoreError::NumericalFailure),
+        Just(CoreError::ModelLeftOut),
     ]
     .boxed()
 }
@@ -846,6 +848,7 @@ fn requests() -> BoxedStrategy<Request> {
         overrides().prop_map(Request::Params),
         stroke_chunks().prop_map(Request::Stroke),
         shot_requests().prop_map(Request::Shot),
+        prop::option::of(shot_requests()).prop_map(Request::Plan),
         Just(Request::Shutdown(Empty {})),
     ]
     .boxed()
@@ -1095,6 +1098,77 @@ fn shot_answers() -> BoxedStrategy<ShotAnswer> {
         .boxed()
 }
 
+fn u64s() -> BoxedStrategy<u64> {
+    prop_oneof![
+        3 => any::<u64>(),
+        1 => prop::sample::select(vec![0u64, 127, 128, 1 << 35, u64::MAX]),
+    ]
+    .boxed()
+}
+
+fn stream_faults() -> BoxedStrategy<StreamFault> {
+    prop_oneof![
+        u64s().prop_map(|index| StreamFault::NotAtRest { index }),
+        (u64s(), u64s()).prop_map(|(first, second)| StreamFault::DoubleHit { first, second }),
+        (u64s(), u64s()).prop_map(|(index, impact)| StreamFault::Saturated { index, impact }),
+        (u64s(), f32s()).prop_map(|(impact, speed)| StreamFault::NotForward { impact, speed }),
+        u64s().prop_map(|index| StreamFault::NotFinite { index }),
+        (u64s(), u64s())
+            .prop_map(|(rest_end, samples)| StreamFault::EndedMidStroke { rest_end, samples }),
+    ]
+    .boxed()
+}
+
+fn live_reports() -> BoxedStrategy<LiveReport> {
+    let strokes = (
+        (u32s(), u64s(), f32s(), u32s()),
+        floats(6),
+        prop::option::of(f32s()),
+        prop::option::of(prop_oneof![
+            shot_answers().prop_map(Ok),
+            link_errors().prop_map(Err)
+        ]),
+    )
+        .prop_map(|((stroke, impact_sample, cue_speed, latency), f, tempo, guidance)| {
+            let mut f = Take::new(f);
+            LiveReport::Stroke(LiveStroke {
+                stroke,
+                impact_sample,
+                cue_speed,
+                latency_instructions: latency,
+                metrics: StrokeMetrics {
+                    backswing_length: f.next(),
+                    backswing_time: f.next(),
+                    pause: f.next(),
+                    forward_time: f.next(),
+                    tempo,
+                    accel_at_impact: f.next(),
+                    elevation_change_deg: f.next(),
+                },
+                guidance,
+            })
+        });
+    prop_oneof![
+        2 => strokes,
+        1 => stream_faults().prop_map(LiveReport::Fault),
+        1 => prop_oneof![
+            u64s().prop_map(|sample| SensorFault::ReadFailed { sample }),
+            u64s().prop_map(|sample| SensorFault::Stalled { sample }),
+            Just(SensorFault::NotStarted),
+        ]
+        .prop_map(LiveReport::Sensor),
+        1 => (u64s(), any::<bool>(), f32s(), u32s()).prop_map(|(samples, truncated, mean, max)| {
+            LiveReport::TraceEnd(TraceEnd {
+                samples,
+                truncated,
+                work_mean_instructions: mean,
+                work_max_instructions: max,
+            })
+        }),
+    ]
+    .boxed()
+}
+
 fn responses() -> BoxedStrategy<Response> {
     prop_oneof![
         1 => version_answers().prop_map(Response::Version),
@@ -1103,6 +1177,8 @@ fn responses() -> BoxedStrategy<Response> {
         1 => stroke_progress().prop_map(Response::StrokeChunk),
         1 => stroke_answers().prop_map(Response::Stroke),
         1 => shot_answers().prop_map(Response::Shot),
+        1 => any::<bool>().prop_map(Response::Plan),
+        2 => live_reports().prop_map(Response::Live),
         1 => (u32s(), u32s())
             .prop_map(|(requests, errors)| Response::Shutdown(ShutdownAnswer { requests, errors })),
         // The errors have the most variants (and `Field`'s 33 under `Invalid`).
@@ -1149,6 +1225,10 @@ fn schema_enums() -> BTreeSet<(&'static str, &'static str)> {
         probe::variants::<TableName>(),
         probe::variants::<EndName>(),
         probe::variants::<ShotMode>(),
+        probe::variants::<LiveReport>(),
+        probe::variants::<SensorFault>(),
+        probe::variants::<StreamFault>(),
+        probe::variants::<Result<(), ()>>(),
     ];
     lists
         .iter()

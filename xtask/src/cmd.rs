@@ -67,8 +67,11 @@ pub fn run(cmd: &mut Command) -> Result {
         cmd.current_dir(root());
     }
     let shown = display(cmd);
-    println!("$ {shown}");
+    // The log of every step is stderr's, the command's included: stdout is left to a
+    // command's own result (`cargo xtask live`'s JSON lines).
+    eprintln!("$ {shown}");
     let status = cmd
+        .stdout(std::io::stderr())
         .status()
         .map_err(|e| Failure::new(format!("cannot start `{shown}`: {e}")))?;
     check(&shown, status)

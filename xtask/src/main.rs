@@ -1,8 +1,9 @@
 //! `cargo xtask`: the project's automation, in Rust so it needs nothing but cargo.
 //!
 //! * `cargo xtask run`  — build the firmware, boot it in QEMU and play the demo session
-//!   (`firmware/demo/session.jsonl`) over its serial port; `--interactive` lets a person
-//!   type the requests. The decoded defmt log follows the session.
+//!   (`firmware/demo/session.jsonl`) over its serial port, then the live cue on an
+//!   example IMU trace (`cargo xtask live`); `--interactive` lets a person type the
+//!   requests. The decoded defmt log follows the session.
 //! * `cargo xtask test` — every check: host fmt/clippy/tests, core for the target,
 //!   firmware fmt/clippy/build and size, the demo session and the end-to-end test in
 //!   QEMU.
@@ -103,8 +104,15 @@ fn main() -> ExitCode {
                 if interactive {
                     qemu::run_interactive(&elf)
                 } else {
+                    let demo = session.is_none();
                     let session = session.unwrap_or_else(qemu::demo_session);
-                    qemu::run_session(&elf, &session, Duration::from_secs(timeout))
+                    qemu::run_session(&elf, &session, Duration::from_secs(timeout))?;
+                    if !demo {
+                        return Ok(());
+                    }
+                    // Then the live cue on an example trace, with a planned shot.
+                    println!("\nxtask: the live cue: {}", live::DEMO_COMMAND);
+                    live::run(&live::Args::demo())
                 }
             }),
         Command::Test { keep_going } => test::run_all(keep_going),

@@ -118,6 +118,10 @@ const STEPS: &[Step] = &[
         action: end_to_end_shot,
     },
     Step {
+        title: "firmware: live cue (issue 15): clippy and build of the `live` image, its size, the shipped IMU traces through it in QEMU against their truth and the host's guidance",
+        action: live_cue,
+    },
+    Step {
         title: "bench-firmware: fmt, clippy, KimGrip f32 disassembly (vsqrt.f32, no soft f64), instruction count within 5 % of the baseline",
         action: crate::bench::check,
     },
@@ -279,6 +283,32 @@ fn end_to_end_shot() -> Result {
     let mut test = e2e_test("e2e_shot");
     test.args(["--ignored", "--nocapture"])
         .env("CUESIGHT_FIRMWARE_ELF", qemu::elf_path())
+        .env("DEFMT_PRINT", defmt_print);
+    cmd::run_with_timeout(&mut test, Duration::from_secs(600))
+}
+
+/// The `live` image (RTIC 2, the emulated IMU, the streaming estimator, guidance on
+/// impact): linted, built, its size printed (issue 15's 48 KiB is not met yet: not
+/// held here, see README "Figures"), and `host-tests/tests/e2e_live.rs` run on it.
+fn live_cue() -> Result {
+    cargo_in_firmware(&[
+        "clippy",
+        "--release",
+        "--features",
+        "live",
+        "--target-dir",
+        qemu::LIVE_TARGET_DIR,
+        "--",
+        "-D",
+        "warnings",
+    ])?;
+    qemu::build_live()?;
+    size::report(&qemu::live_elf_path())?;
+    tools::ensure_qemu()?;
+    let defmt_print = tools::defmt_print()?;
+    let mut test = e2e_test("e2e_live");
+    test.args(["--ignored", "--nocapture"])
+        .env("CUESIGHT_LIVE_ELF", qemu::live_elf_path())
         .env("DEFMT_PRINT", defmt_print);
     cmd::run_with_timeout(&mut test, Duration::from_secs(600))
 }

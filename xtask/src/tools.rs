@@ -15,13 +15,13 @@ pub const TARGET: &str = "thumbv7em-none-eabihf";
 /// Everything the host and firmware checks need before QEMU: the target, clippy, rustfmt.
 pub fn ensure_toolchain() -> Result {
     if probe(Command::new("rustup").arg("--version")).is_none() {
-        println!("xtask: rustup not found; assuming the toolchain already has {TARGET}, clippy and rustfmt");
+        eprintln!("xtask: rustup not found; assuming the toolchain already has {TARGET}, clippy and rustfmt");
         return ensure_flip_link();
     }
     let targets =
         probe(Command::new("rustup").args(["target", "list", "--installed"])).unwrap_or_default();
     if !targets.lines().any(|t| t.trim() == TARGET) {
-        println!("xtask: installing the Rust target {TARGET}");
+        eprintln!("xtask: installing the Rust target {TARGET}");
         cmd::run(Command::new("rustup").args(["target", "add", TARGET]))?;
     }
     let components = probe(Command::new("rustup").args(["component", "list", "--installed"]))
@@ -35,7 +35,7 @@ pub fn ensure_toolchain() -> Result {
         })
         .collect();
     if !missing.is_empty() {
-        println!(
+        eprintln!(
             "xtask: installing the rustup components {}",
             missing.join(", ")
         );
@@ -69,7 +69,7 @@ pub fn ensure_flip_link() -> Result {
             .filter(|path| path.is_file())
     };
     if in_cargo_bin().is_none() {
-        println!("xtask: flip-link not found; installing it with cargo install");
+        eprintln!("xtask: flip-link not found; installing it with cargo install");
         cmd::run(cmd::cargo().args(["install", "flip-link", "--locked"]))?;
     }
     let Some(found) = in_cargo_bin() else {
@@ -107,7 +107,7 @@ pub fn ensure_qemu() -> Result {
     if probe(Command::new("qemu-system-arm").arg("--version")).is_some() {
         return Ok(());
     }
-    println!("xtask: qemu-system-arm not found; installing the Debian package qemu-system-arm");
+    eprintln!("xtask: qemu-system-arm not found; installing the Debian package qemu-system-arm");
     let apt = Apt::for_missing("qemu-system-arm")?;
     apt.run(&["update"])?;
     // `--no-remove`: never trade a package the machine already has for QEMU.
@@ -121,7 +121,7 @@ pub fn ensure_qemu() -> Result {
     if let Err(failure) = plain {
         // Typically a qemu-utils from backports that the stable qemu-system-arm would
         // replace: take qemu-system-arm from the same backports suite instead.
-        println!(
+        eprintln!(
             "xtask: {}; trying the distribution's backports suite",
             failure.message
         );
@@ -141,7 +141,7 @@ pub fn defmt_print() -> Result<PathBuf> {
     if let Some(found) = find_defmt_print() {
         return Ok(found);
     }
-    println!(
+    eprintln!(
         "xtask: defmt-print not found; installing it with cargo install (takes a minute or two)"
     );
     cmd::run(cmd::cargo().args(["install", "defmt-print", "--locked", "--version", "^1"]))?;
@@ -174,7 +174,7 @@ pub fn ensure_cargo_fuzz() -> Result {
     if runs() {
         return Ok(());
     }
-    println!("xtask: cargo-fuzz not found; installing it with cargo install (about a minute)");
+    eprintln!("xtask: cargo-fuzz not found; installing it with cargo install (about a minute)");
     cmd::run(cmd::cargo().args([
         "install",
         "cargo-fuzz",
@@ -203,7 +203,7 @@ pub fn ensure_cxx() -> Result {
     if found() {
         return Ok(());
     }
-    println!("xtask: no C++ compiler (c++, g++) found; installing the Debian package g++ (libfuzzer-sys compiles libFuzzer)");
+    eprintln!("xtask: no C++ compiler (c++, g++) found; installing the Debian package g++ (libfuzzer-sys compiles libFuzzer)");
     let apt = Apt::for_missing("a C++ compiler (g++)")?;
     apt.run(&["update"])?;
     apt.run(&[

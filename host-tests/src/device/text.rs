@@ -7,6 +7,7 @@ use std::fmt;
 
 use cuesight_link::error::{FrameFault, NoAim, SequenceFault, Unsupported};
 use cuesight_link::frame::MAX_FRAME;
+use cuesight_link::live::LiveReport;
 use cuesight_link::names::{EndName, ShotMode};
 use cuesight_link::shot::BallPart;
 use cuesight_link::{LinkError, Response, UploadFault, MAX_CHUNKS, STROKE_CAPACITY};
@@ -36,6 +37,41 @@ pub struct Schema(pub u32);
 impl fmt::Display for Schema {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{:#010x}", self.0)
+    }
+}
+
+/// One line about an unprompted live report.
+fn live_summary(f: &mut fmt::Formatter<'_>, report: &LiveReport) -> fmt::Result {
+    match report {
+        LiveReport::Stroke(s) => {
+            write!(
+                f,
+                "live stroke {}: impact at sample {}, cue {:.3} m/s (backswing {:.3} m, pause {:.2} s, tempo {})",
+                s.stroke,
+                s.impact_sample,
+                s.cue_speed,
+                s.metrics.backswing_length,
+                s.metrics.pause,
+                s.metrics.tempo.map_or("-".to_string(), |t| format!("{t:.2}")),
+            )?;
+            match &s.guidance {
+                None => f.write_str("; no plan set"),
+                Some(Ok(answer)) => write!(f, "; {}", Summary(&Response::Shot(answer.clone()))),
+                Some(Err(error)) => write!(f, "; the plan failed: {}", Sentence(error)),
+            }
+        }
+        LiveReport::Fault(fault) => write!(f, "live: an impact that is no stroke: {fault:?}"),
+        LiveReport::Sensor(fault) => write!(f, "live: IMU fault: {fault:?}"),
+        LiveReport::TraceEnd(end) => {
+            write!(
+            f,
+            "live: trace ended after {} samples{}; {:.0} instructions per sample (mean), {} (max)",
+            end.samples,
+            if end.truncated { " (the file was cut short)" } else { "" },
+            end.work_mean_instructions,
+            end.work_max_instructions
+        )
+        }
     }
 }
 
@@ -81,6 +117,9 @@ impl fmt::Display for Summary<'_> {
                 p.radius,
                 p.mass
             ),
+            Response::Plan(true) => f.write_str("plan set: each stroke the cue detects plays it"),
+            Response::Plan(false) => f.write_str("no plan: strokes are reported without guidance"),
+            Response::Live(report) => live_summary(f, report),
             Response::StrokeChunk(p) => write!(
                 f,
                 "stroke {}: {} of {} chunks held, {} samples",

@@ -87,6 +87,8 @@ impl StreamStroke {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub enum StreamFault {
     /// An impact-sized deceleration with no rest of `min_rest` before it (a knock, or
     /// the cue moved for longer than `max_stroke` since its last rest).

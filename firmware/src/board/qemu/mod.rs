@@ -3,10 +3,12 @@
 //!
 //! * **Link:** CMSDK APB UART0 at `0x4000_4000` ([`uart`]), which QEMU connects to its
 //!   first `-serial` chardev (`-serial stdio` in `cargo xtask`).
-//! * **IMU trace:** a file the host writes ([`trace_file`], read through semihosting in
+//! * **IMU trace** (the `live` feature): a file the host writes ([`trace_file`], read through semihosting in
 //!   chunks; `crate::live::feed`), whose samples the emulated LSM6DSOX gives out one
 //!   per TIMER1 period ([`timers`]), as the part's data-ready would.
-//! * **Interrupts:** RTIC 2 drives them; [`pac`] names the lines it binds.
+//! * **Interrupts:** with the `live` feature RTIC 2 drives them ([`pac`] names the lines
+//!   it binds); without it no handler runs and UART0's receive interrupt only wakes
+//!   `wfi`.
 //! * **Log:** defmt frames over semihosting to QEMU's stderr ([`log`]), so the binary
 //!   log never mixes with the protocol on stdout.
 //! * **Exit:** semihosting `SYS_EXIT`, which QEMU turns into its own exit code.
@@ -51,10 +53,18 @@ fn write_at(address: usize, value: u32) {
     unsafe { core::ptr::write_volatile(address as *mut u32, value) }
 }
 
+#[cfg(not(feature = "live"))]
+#[allow(unsafe_code)]
+fn unmask_link_interrupt() {
+    // SAFETY: unmasking cannot break a critical section: PRIMASK is set and stays set,
+    // so the interrupt only pends and wakes `wfi`.
+    unsafe { cortex_m::peripheral::NVIC::unmask(pac::Interrupt::UART0RX) }
+}
+
 /// The board's peripherals, as the firmware uses them.
 pub struct Board {
     /// The link's serial port (UART0).
-    pub link: Uart,
+    pub serial: Uart,
     /// The IMU trace, if QEMU's working directory has one.
     pub trace: Option<trace_file::TraceFile>,
 }
@@ -71,8 +81,15 @@ pub fn init() -> Board {
     }
     stack::paint();
     timers::start_uptime();
+    // Without the live cue no handler runs: interrupts stay masked and UART0's only
+    // wakes `wfi` (Armv7-M ARM B1.5.19); `Uart`'s blocking `read` sleeps on it.
+    #[cfg(not(feature = "live"))]
+    {
+        cortex_m::interrupt::disable();
+        unmask_link_interrupt();
+    }
     Board {
-        link: Uart::init(UART0),
+        serial: Uart::init(UART0),
         trace: trace_file::TraceFile::open(),
     }
 }

@@ -1,0 +1,421 @@
+//! The firmware on QEMU's mps2-an386 as an RTIC 2 application: concurrent tasks on the
+//! Cortex-M4F's interrupt priorities, with no executor of our own and no heap.
+//!
+//! | task | runs on | priority | does |
+//! |---|---|---|---|
+//! | `sample` | TIMER1, the IMU's data-ready at the output data rate | 3 | latches the next trace sample into the emulated LSM6DSOX, reads it with the driver, steps the streaming estimator; hands a stroke, fault or the trace's end to `report` |
+//! | `report` | the dual timer's line, pended by `sample` | 2 | plays the planned shot at the stroke's speed, sends the live report frame unprompted, logs it |
+//! | `feed` | UART1's receive line (UART1 unused), pended by `sample` | 1 | reads the next chunk of the IMU trace (`board::trace_file`), decodes it (`live::feed`) into a 127-item queue; starts the data-ready clock |
+//! | `link_rx` | UART0 receive | 1 | acknowledges the byte, waking `idle` |
+//! | `idle` | thread mode | 0 | serves the link: frames in, answers out (`serve.rs`) |
+//!
+//! The session (defaults, plan) is shared by `idle` and `report`: RTIC locks it by
+//! priority ceiling, so a stroke reported while a request is being answered waits for
+//! that answer (its latency says so), and two shot computations never stack. The
+//! emulated IMU starts on the host's first request (a plan set first holds from the
+//! first stroke).
+//!
+//! RTIC rather than embassy: the tasks are interrupt handlers at fixed priorities, and
+//! RTIC's shared resources are locks by priority ceiling (BASEPRI), checked at compile
+//! time, at a few instructions each: no executor, no time driver, no waker, which the
+//! 48 KiB flash budget and the ≤ 400-instruction sampling path both want. No async task
+//! either: RTIC's async executor keeps a panic for a future resumed after completion,
+//! which the image's no-panic proof refuses.
+
+/// The firmware name and version, as `version` reports them.
+pub const FIRMWARE: &str = concat!(env!("CARGO_PKG_NAME"), " ", env!("CARGO_PKG_VERSION"));
+
+#[allow(unsafe_code)]
+#[rtic::app(device = cuesight_firmware::board::pac, peripherals = false)]
+mod app {
+    use cuesight_device::{live_frame, Identity, Session, Upload};
+    use cuesight_firmware::board::trace_file::TraceFile;
+    use cuesight_firmware::board::{self, pac::Interrupt, timers, uart::Uart};
+    use cuesight_firmware::live::feed::{Fed, Feed, SAMPLE_LEN};
+    use cuesight_firmware::live::sampler::Sampler;
+    use cuesight_firmware::live::{metrics, Detected};
+    use cuesight_firmware::{serve, shots};
+    use cuesight_link::frame::{FrameReader, MAX_FRAME};
+    use cuesight_link::live::{LiveReport, LiveStroke, SensorFault, TraceEnd};
+    use cuesight_link::SCHEMA_HASH;
+    use cuesight_sensors::StreamEvent;
+    use heapless::spsc::{Consumer, Producer, Queue};
+    use static_cell::ConstStaticCell;
+
+    use super::FIRMWARE;
+
+    /// Items (trace starts, samples, ends) between `feed` and `sample`: 128 slots, 127
+    /// usable (1.8 KB).
+    const QUEUE: usize = 128;
+    /// `sample` wakes `feed` when fewer items than this wait (4.8 ms of samples at
+    /// 6.66 kHz: `feed` runs long before they are gone).
+    const RESUME_AT: usize = 32;
+    /// Bytes `feed` reads at most at once: 64 samples.
+    const CHUNK: usize = 64 * SAMPLE_LEN;
+    /// Reports waiting for `report` (a power of two, one slot unused: 3).
+    const DETECTED: usize = 4;
+
+    /// What `feed` hands to `sample`, in trace order.
+    #[derive(Clone, Copy)]
+    pub enum Item {
+        /// A trace starts at this rate (Hz).
+        Start(u16),
+        /// A sample, `[ax, ay, az, gx, gy, gz]` raw.
+        Sample([i16; 6]),
+        /// The trace ended (`truncated`: the file ended before the samples its header
+        /// announced).
+        End { truncated: bool },
+    }
+
+    /// Per-sample cost, in TIMER0 ticks (40 instructions each under `-icount shift=0`),
+    /// the emulated bus excluded.
+    #[derive(Clone, Copy, Default)]
+    pub struct Cost {
+        pub samples: u32,
+        pub ticks: u64,
+        pub max_ticks: u32,
+    }
+
+    static UPLOAD: ConstStaticCell<Upload> = ConstStaticCell::new(Upload::new());
+    static FRAMES: ConstStaticCell<FrameReader> = ConstStaticCell::new(FrameReader::new());
+    static ANSWER: ConstStaticCell<[u8; MAX_FRAME]> = ConstStaticCell::new([0; MAX_FRAME]);
+    static REPORT: ConstStaticCell<[u8; MAX_FRAME]> = ConstStaticCell::new([0; MAX_FRAME]);
+
+    #[shared]
+    struct Shared {
+        link: Uart,
+        session: Session<&'static mut Upload>,
+    }
+
+    #[local]
+    struct Local {
+        trace: Option<TraceFile>,
+        feed: Feed,
+        rate_hz: u16,
+        producer: Producer<'static, Item, QUEUE>,
+        consumer: Consumer<'static, Item, QUEUE>,
+        detected_tx: Producer<'static, Detected, DETECTED>,
+        detected_rx: Consumer<'static, Detected, DETECTED>,
+        sampler: Option<Sampler>,
+        cost: Cost,
+        frames: &'static mut FrameReader,
+        answer: &'static mut [u8; MAX_FRAME],
+        report_out: &'static mut [u8; MAX_FRAME],
+    }
+
+    #[init(local = [
+        queue: Queue<Item, QUEUE> = Queue::new(),
+        detected: Queue<Detected, DETECTED> = Queue::new(),
+    ])]
+    fn init(cx: init::Context) -> (Shared, Local) {
+        let board = board::init();
+        defmt::info!("{=str} on {=str}", FIRMWARE, board::NAME);
+        if shots::run_all() != 0 {
+            board::exit(false);
+        }
+        let identity = Identity {
+            firmware: FIRMWARE,
+            board: board::NAME,
+        };
+        let (Some(upload), Some(frames), Some(answer), Some(report_out)) = (
+            UPLOAD.try_take(),
+            FRAMES.try_take(),
+            ANSWER.try_take(),
+            REPORT.try_take(),
+        ) else {
+            defmt::error!("the session buffers were already taken");
+            board::exit(false)
+        };
+        let (producer, consumer) = cx.local.queue.split();
+        let (detected_tx, detected_rx) = cx.local.detected.split();
+        defmt::info!("serving link schema {=u32:#010x} on UART0", SCHEMA_HASH);
+        if board.trace.is_none() {
+            defmt::info!("no IMU trace: the live cue waits");
+        }
+        (
+            Shared {
+                link: board.serial,
+                session: Session::with_upload(identity, upload),
+            },
+            Local {
+                trace: board.trace,
+                feed: Feed::new(),
+                rate_hz: 0,
+                producer,
+                consumer,
+                detected_tx,
+                detected_rx,
+                sampler: None,
+                cost: Cost::default(),
+                frames,
+                answer,
+                report_out,
+            },
+        )
+    }
+
+    /// The link: every frame gets its answer, until `shutdown`.
+    #[idle(shared = [link, session], local = [frames, answer])]
+    fn idle(cx: idle::Context) -> ! {
+        let idle::SharedResources {
+            link, mut session, ..
+        } = cx.shared;
+        let answer = &mut cx.local.answer[..];
+        let hello = session.lock(|session| session.hello(answer));
+        let mut port = serve::LinkPort::new(link);
+        let mut first = true;
+        let served = serve::serve(&mut port, hello, cx.local.frames, answer, |frame, out| {
+            let served = session.lock(|session| session.serve(frame, out));
+            if core::mem::take(&mut first) {
+                // The host is here: the emulated IMU starts.
+                rtic::pend(Interrupt::UART1RX);
+            }
+            served
+        });
+        let Ok(()) = served;
+        let (requests, errors) = session.lock(|s| (s.requests(), s.errors()));
+        defmt::info!(
+            "shutdown: {=u32} requests answered, {=u32} with an error",
+            requests,
+            errors
+        );
+        let (peak, size) = board::peak_stack();
+        defmt::info!("peak stack {=u32} of {=u32} bytes", peak, size);
+        board::exit(true)
+    }
+
+    /// A link byte arrived: acknowledge, so `idle` (woken) reads it.
+    #[task(binds = UART0RX, priority = 1, shared = [link])]
+    fn link_rx(mut cx: link_rx::Context) {
+        cx.shared.link.lock(|link| link.acknowledge());
+    }
+
+    /// Trace chunks in, queue items out: runs when `sample` finds the queue below
+    /// [`RESUME_AT`] (and on the host's first request), reads as many whole samples as
+    /// there is room for, and starts the data-ready clock.
+    #[task(binds = UART1RX, priority = 1, local = [trace, feed, producer, rate_hz, chunk: [u8; CHUNK] = [0; CHUNK]])]
+    fn feed(cx: feed::Context) {
+        let feed::LocalResources {
+            trace,
+            feed,
+            producer,
+            rate_hz,
+            chunk,
+            ..
+        } = cx.local;
+        let Some(file) = trace.as_mut() else {
+            return;
+        };
+        // One header or sample per free slot, and room for the end marker.
+        let room = (producer.capacity() - producer.len()).saturating_sub(1);
+        let want = (room * SAMPLE_LEN).min(CHUNK);
+        let read = file.read(chunk.get_mut(..want).unwrap_or_default());
+        for &byte in chunk.get(..read).unwrap_or_default() {
+            let item = match feed.push(byte) {
+                None => continue,
+                Some(Fed::BadMagic) => {
+                    defmt::error!("IMU trace: no `CUE1` header where one belongs; dropped");
+                    *trace = None;
+                    return;
+                }
+                Some(Fed::Header {
+                    rate_hz: rate,
+                    samples,
+                }) => {
+                    defmt::info!("IMU trace: {=u32} samples at {=u16} Hz", samples, rate);
+                    *rate_hz = rate;
+                    Item::Start(rate)
+                }
+                Some(Fed::Sample(words)) => Item::Sample(words),
+            };
+            let _ = producer.enqueue(item);
+            if feed.left() == 0 && matches!(item, Item::Sample(_)) {
+                let _ = producer.enqueue(Item::End { truncated: false });
+            }
+        }
+        if read < want {
+            // The file ended: a trace cut short ends here.
+            if feed.left() > 0 {
+                let _ = producer.enqueue(Item::End { truncated: true });
+            }
+            *trace = None;
+        }
+        if !timers::sampling() && *rate_hz > 0 {
+            timers::start_sampling(u32::from(*rate_hz));
+        }
+    }
+
+    /// The data-ready: one sample through the part, the driver and the estimator.
+    #[task(binds = TIMER1, priority = 3, local = [consumer, sampler, cost, detected_tx, failing: bool = false])]
+    fn sample(cx: sample::Context) {
+        let at = timers::ticks();
+        timers::acknowledge_sample();
+        let sample::LocalResources {
+            consumer,
+            sampler,
+            cost,
+            detected_tx,
+            failing,
+            ..
+        } = cx.local;
+        let mut item = consumer.dequeue();
+        if consumer.len() < RESUME_AT {
+            rtic::pend(Interrupt::UART1RX);
+        }
+        // A trace's start (the part's `init`) is no sample's cost.
+        let mut start_ticks = 0;
+        if let Some(Item::Start(rate)) = item {
+            let begun = timers::ticks();
+            *sampler = Sampler::start(f32::from(rate))
+                .inspect_err(|error| defmt::error!("live: cannot start sampling: {}", error))
+                .ok();
+            if sampler.is_none() {
+                hand_over(detected_tx, Detected::Sensor(SensorFault::NotStarted));
+            }
+            *cost = Cost::default();
+            item = consumer.dequeue();
+            start_ticks = timers::ticks().wrapping_sub(begun);
+        }
+        let Some(live) = sampler.as_mut() else {
+            return;
+        };
+        match item {
+            Some(Item::Sample(words)) => {
+                let begun = timers::ticks();
+                let read = live.latch(words).then(|| live.read());
+                let bus_ticks = timers::ticks().wrapping_sub(begun);
+                let event = match read {
+                    Some(Ok((ax, gy))) => {
+                        *failing = false;
+                        live.estimate(ax, gy)
+                    }
+                    // One report per run of failures.
+                    Some(Err(_)) if !*failing => {
+                        *failing = true;
+                        let sample = live.samples();
+                        hand_over(
+                            detected_tx,
+                            Detected::Sensor(SensorFault::ReadFailed { sample }),
+                        );
+                        None
+                    }
+                    None if !*failing => {
+                        *failing = true;
+                        let sample = live.samples();
+                        hand_over(
+                            detected_tx,
+                            Detected::Sensor(SensorFault::Stalled { sample }),
+                        );
+                        None
+                    }
+                    _ => None,
+                };
+                if let Some(event) = event {
+                    hand_over(detected_tx, Detected::Event { event, at });
+                }
+                // From the interrupt's start, without the emulated bus (a real part's
+                // read is the I²C peripheral's time, not the core's).
+                let work = timers::ticks()
+                    .wrapping_sub(at)
+                    .wrapping_sub(bus_ticks)
+                    .wrapping_sub(start_ticks);
+                cost.samples += 1;
+                cost.ticks += u64::from(work);
+                cost.max_ticks = cost.max_ticks.max(work);
+            }
+            Some(Item::End { truncated }) => {
+                timers::stop_sampling();
+                if let Some(event) = live.finish() {
+                    hand_over(detected_tx, Detected::Event { event, at });
+                }
+                let per_tick = timers::INSTRUCTIONS_PER_TICK;
+                hand_over(
+                    detected_tx,
+                    Detected::End(TraceEnd {
+                        samples: u64::from(cost.samples),
+                        truncated,
+                        work_mean_instructions: cost.ticks as f32 * per_tick as f32
+                            / cost.samples.max(1) as f32,
+                        work_max_instructions: cost.max_ticks * per_tick,
+                    }),
+                );
+            }
+            // Only while `feed` has not caught up (emulation): wait for it.
+            Some(Item::Start(_)) | None => timers::stop_sampling(),
+        }
+    }
+
+    /// Queues `detected` for `report` and pends it (a full queue drops it: `report`
+    /// runs at every return from `sample`, so three waiting means it is stuck).
+    fn hand_over(detected_tx: &mut Producer<'static, Detected, DETECTED>, detected: Detected) {
+        let _ = detected_tx.enqueue(detected);
+        rtic::pend(Interrupt::DUALTIMER);
+    }
+
+    /// Strokes, faults and trace ends from `sample`: the guidance, the unprompted
+    /// report frame, the log.
+    #[task(binds = DUALTIMER, priority = 2, shared = [link, session], local = [detected_rx, report_out, strokes: u32 = 0])]
+    fn report(cx: report::Context) {
+        let report::LocalResources {
+            detected_rx,
+            report_out,
+            strokes,
+            ..
+        } = cx.local;
+        let report::SharedResources {
+            mut link,
+            mut session,
+            ..
+        } = cx.shared;
+        while let Some(detected) = detected_rx.dequeue() {
+            let report = match detected {
+                Detected::Event {
+                    event: StreamEvent::Stroke(stroke),
+                    at,
+                } => {
+                    *strokes += 1;
+                    let guidance = session.lock(|s| s.plan_guidance(stroke.cue_speed));
+                    let latency = timers::ticks().wrapping_sub(at) * timers::INSTRUCTIONS_PER_TICK;
+                    defmt::info!(
+                        "stroke {=u32}: impact at sample {=u64}, cue {=f32} m/s, guidance after {=u32} instructions",
+                        *strokes,
+                        stroke.impact_index,
+                        stroke.cue_speed,
+                        latency
+                    );
+                    LiveReport::Stroke(LiveStroke {
+                        stroke: *strokes,
+                        impact_sample: stroke.impact_index,
+                        cue_speed: stroke.cue_speed,
+                        latency_instructions: latency,
+                        metrics: metrics(&stroke),
+                        guidance,
+                    })
+                }
+                Detected::Event {
+                    event: StreamEvent::Fault(fault),
+                    ..
+                } => {
+                    defmt::info!("stroke fault: {}", fault);
+                    LiveReport::Fault(fault)
+                }
+                Detected::Sensor(fault) => {
+                    defmt::warn!("IMU: {}", fault);
+                    LiveReport::Sensor(fault)
+                }
+                Detected::End(end) => {
+                    defmt::info!(
+                        "IMU trace ended: {=u64} samples, {=f32} instructions per sample (mean), {=u32} (max)",
+                        end.samples,
+                        end.work_mean_instructions,
+                        end.work_max_instructions
+                    );
+                    LiveReport::TraceEnd(end)
+                }
+            };
+            let len = live_frame(report, &mut report_out[..]);
+            let frame = report_out.get(..len).unwrap_or_default();
+            link.lock(|link| link.write_all(frame));
+        }
+    }
+}

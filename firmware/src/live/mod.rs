@@ -1,0 +1,39 @@
+//! The live cue (issue 15): IMU samples in, strokes out. [`feed`] decodes the trace
+//! the QEMU board receives, [`sampler`] runs the part, the driver and the streaming
+//! estimator; the RTIC app (`app.rs`) paces them and reports.
+
+pub mod feed;
+pub mod sampler;
+
+use cuesight_link::live::{SensorFault, StrokeMetrics, TraceEnd};
+use cuesight_sensors::{StreamEvent, StreamStroke};
+
+/// What the sampling task hands to the reporting task.
+#[derive(Clone, Copy)]
+pub enum Detected {
+    /// The estimator's report, and the TIMER0 ticks when the interrupt that delivered
+    /// the detecting sample began.
+    Event {
+        /// The report.
+        event: StreamEvent,
+        /// When its interrupt began.
+        at: u32,
+    },
+    /// The IMU failed.
+    Sensor(SensorFault),
+    /// The trace ended.
+    End(TraceEnd),
+}
+
+/// A stroke's metrics for the live report (`docs/sensors.md` §11).
+pub fn metrics(stroke: &StreamStroke) -> StrokeMetrics {
+    StrokeMetrics {
+        backswing_length: stroke.backswing_length,
+        backswing_time: stroke.backswing_time,
+        pause: stroke.pause,
+        forward_time: stroke.forward_time,
+        tempo: stroke.tempo(),
+        accel_at_impact: stroke.accel_at_impact,
+        elevation_change_deg: stroke.tilt_at_impact * (180.0 / core::f32::consts::PI),
+    }
+}

@@ -1,0 +1,74 @@
+//! The IMU sampling step: a sample arrives at the LSM6DSOX (on QEMU, latched into the
+//! emulated part from the trace), the unchanged driver reads it over the embedded-hal
+//! I²C bus, and the streaming estimator takes the along-cue acceleration `ax` and the
+//! pitch rate `gy` (`docs/sensors.md`). O(1) per sample, no buffer.
+
+use cuesight_sensors::emulated::{BusError, EmulatedLsm6dsox, Sa0, SensorLatch};
+use cuesight_sensors::lsm6dsox::{Error as ImuError, ADDRESS_SA0_LOW};
+use cuesight_sensors::{
+    Lsm6dsox, StreamConfig, StreamConfigError, StreamEvent, StreamingEstimator,
+};
+
+/// Why sampling could not start.
+#[derive(Clone, Copy, Debug, defmt::Format)]
+pub enum StartError {
+    /// The part did not come up (chip id, reset, bus).
+    Imu(ImuError<BusError>),
+    /// The rate is not one the estimator takes.
+    Rate(StreamConfigError),
+}
+
+/// The part, its bus and the estimator.
+pub struct Sampler {
+    part: EmulatedLsm6dsox,
+    estimator: StreamingEstimator,
+}
+
+impl Sampler {
+    /// Brings the part up with the driver's `init` (chip id, reset, 6.66 kHz ±16 g /
+    /// ±2000 dps, block data update) and an estimator for `rate_hz`.
+    pub fn start(rate_hz: f32) -> Result<Self, StartError> {
+        let mut part = EmulatedLsm6dsox::new(Sa0::Low);
+        Lsm6dsox::new(&mut part, ADDRESS_SA0_LOW)
+            .init()
+            .map_err(StartError::Imu)?;
+        let estimator =
+            StreamingEstimator::new(&StreamConfig::new(rate_hz)).map_err(StartError::Rate)?;
+        Ok(Self { part, estimator })
+    }
+
+    /// The conversion: the part latches `words` (`[ax, ay, az, gx, gy, gz]`) and
+    /// raises data-ready. Returns whether the part took them (not stalled).
+    pub fn latch(&mut self, words: [i16; 6]) -> bool {
+        self.part.latch(words).accel != SensorLatch::Stalled
+    }
+
+    /// The driver reads the sample over the bus: `(ax, gy)`.
+    pub fn read(&mut self) -> Result<(i16, i16), ImuError<BusError>> {
+        let sample = Lsm6dsox::new(&mut self.part, ADDRESS_SA0_LOW).read_raw()?;
+        Ok((sample.accel[0], sample.gyro[1]))
+    }
+
+    /// The estimator's step.
+    #[inline(always)]
+    pub fn estimate(&mut self, ax: i16, gy: i16) -> Option<StreamEvent> {
+        self.estimator.push_raw(ax, Some(gy))
+    }
+
+    /// The trace ended: a stroke being integrated is reported as ended mid-stroke, and
+    /// the estimator starts over at sample 0.
+    pub fn finish(&mut self) -> Option<StreamEvent> {
+        self.estimator.finish()
+    }
+
+    /// Samples since the start or the last [`Self::finish`].
+    pub fn samples(&self) -> u64 {
+        self.estimator.samples()
+    }
+
+    /// Fault injection (the bad-input cases of issue 15): a failing bus, a stalled part.
+    pub fn set_faults(&mut self, bus_failing: bool, stalled: bool) {
+        self.part.set_bus_failing(bus_failing);
+        self.part.set_stalled(stalled);
+    }
+}
