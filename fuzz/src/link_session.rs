@@ -203,6 +203,7 @@ impl Device {
             (Request::Collide(_), Response::Collide(_))
             | (Request::Params(_), Response::Params(_))
             | (Request::Shot(_), Response::Shot(_)) => {}
+            (Request::Plan(plan), Response::Plan(set)) => assert_eq!(*set, plan.is_some()),
             (Request::Shutdown(_), Response::Shutdown(counts)) => {
                 assert_eq!(counts.requests, self.session.requests(), "shutdown's count");
                 assert_eq!(counts.errors, self.session.errors(), "shutdown's errors");
