@@ -43,6 +43,10 @@
 #[cfg(feature = "shot")]
 mod guide;
 mod session;
+#[cfg(feature = "upload")]
+mod upload;
+#[cfg(not(feature = "upload"))]
+#[path = "no_upload.rs"]
 mod upload;
 
 pub use session::{live_frame, Control, Identity, Served, Session};

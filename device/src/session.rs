@@ -14,7 +14,9 @@ use cuesight_link::response::{
 };
 use cuesight_link::{ShotAnswer, MAX_SAMPLES, SCHEMA_HASH, STROKE_CAPACITY};
 
-use crate::upload::{Step, Upload};
+#[cfg(feature = "upload")]
+use crate::upload::Step;
+use crate::upload::Upload;
 
 /// Who the device is, for `version`.
 #[derive(Clone, Copy, Debug)]
@@ -283,7 +285,14 @@ impl<U: BorrowMut<Upload>> Session<U> {
         None
     }
 
+    /// Without the `upload` feature no stroke is taken.
+    #[cfg(not(feature = "upload"))]
+    fn stroke(&mut self, _: &StrokeChunk, _: u16, _: &mut [u8]) -> Result<usize, LinkError> {
+        Err(LinkError::Unsupported(Unsupported::Upload))
+    }
+
     /// Adds a chunk to the upload; on the last one, estimates and clears it.
+    #[cfg(feature = "upload")]
     #[inline(never)]
     fn stroke(
         &mut self,
@@ -310,7 +319,12 @@ impl<U: BorrowMut<Upload>> Session<U> {
             board: short_name(self.identity.board),
             max_frame: MAX_FRAME as u16,
             max_samples: MAX_SAMPLES as u16,
-            stroke_capacity: STROKE_CAPACITY as u16,
+            // No uploads without the `upload` feature: room for none.
+            stroke_capacity: if cfg!(feature = "upload") {
+                STROKE_CAPACITY as u16
+            } else {
+                0
+            },
             shot: cfg!(feature = "shot"),
         }
     }

@@ -266,9 +266,7 @@ mod app {
         let mut start_ticks = 0;
         if let Some(Item::Start(rate)) = item {
             let begun = timers::ticks();
-            *sampler = Sampler::start(f32::from(rate))
-                .inspect_err(|error| defmt::error!("live: cannot start sampling: {}", error))
-                .ok();
+            *sampler = Sampler::start(f32::from(rate)).ok();
             if sampler.is_none() {
                 hand_over(detected_tx, Detected::Sensor(SensorFault::NotStarted));
             }
@@ -396,20 +394,15 @@ mod app {
                     event: StreamEvent::Fault(fault),
                     ..
                 } => {
-                    defmt::info!("stroke fault: {}", fault);
+                    defmt::info!("an impact that is no stroke (the live report says why)");
                     LiveReport::Fault(fault)
                 }
                 Detected::Sensor(fault) => {
-                    defmt::warn!("IMU: {}", fault);
+                    defmt::warn!("IMU fault (the live report says which)");
                     LiveReport::Sensor(fault)
                 }
                 Detected::End(end) => {
-                    defmt::info!(
-                        "IMU trace ended: {=u64} samples, {=f32} instructions per sample (mean), {=u32} (max)",
-                        end.samples,
-                        end.work_mean_instructions,
-                        end.work_max_instructions
-                    );
+                    defmt::info!("IMU trace ended after {=u64} samples", end.samples);
                     LiveReport::TraceEnd(end)
                 }
             };

@@ -179,6 +179,15 @@ fn the_live_cue_reports_every_stroke_of_the_shipped_traces_with_the_hosts_guidan
             "{name}: {} instructions per sample (mean)",
             end.work_mean_instructions
         );
+        let peak = played.ended.log.iter().find_map(|line| {
+            line.split("peak stack ")
+                .nth(1)?
+                .split(' ')
+                .next()?
+                .parse::<u32>()
+                .ok()
+        });
+        println!("{name}: peak stack {peak:?} bytes");
         println!(
             "{name}: {} strokes, {} faults, {} samples; per sample {:.0} instructions mean, {} max (40-instruction resolution)",
             reported.len(),

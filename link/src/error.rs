@@ -156,6 +156,9 @@ pub enum Unsupported {
     ReferenceModel,
     /// `shot`: the image was built without `cuesight-device`'s `shot` feature.
     Shot,
+    /// `stroke`: the image was built without `cuesight-device`'s `upload` feature (the
+    /// live cue's image: its IMU measures the strokes itself).
+    Upload,
 }
 
 /// Why no aim pockets the ball (`cuesight::aim::AimError`).

@@ -23,6 +23,7 @@ use std::fmt::Debug;
 use cuesight::{Error as CoreError, Field};
 use cuesight_link::error::{FrameFault, NoAim, SequenceFault, Unsupported};
 use cuesight_link::frame::{self, FrameReader, Received, MAX_FRAME, MAX_RAW};
+use cuesight_link::live::{LiveReport, LiveStroke, SensorFault, StrokeMetrics, TraceEnd};
 use cuesight_link::names::{EndName, ModelName, RegimeName, ShotMode, TableName};
 use cuesight_link::response::{
     BallAnswer, ImpulsesAnswer, InputEcho, ParamsAnswer, ShutdownAnswer, StrokeProgress, NAME_LEN,
@@ -33,7 +34,6 @@ use cuesight_link::{
     ShotRequest, StrokeAnswer, StrokeChunk, StrokeSetup, UploadFault, VersionAnswer,
     MAX_OBJECT_BALLS, MAX_SAMPLES, SCHEMA_HASH,
 };
-use cuesight_link::live::{LiveReport, LiveStroke, SensorFault, StrokeMetrics, TraceEnd};
 use cuesight_sensors::{ConfigField, GlitchKind, StreamFault, StrokeError};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
@@ -1129,25 +1129,27 @@ fn live_reports() -> BoxedStrategy<LiveReport> {
             link_errors().prop_map(Err)
         ]),
     )
-        .prop_map(|((stroke, impact_sample, cue_speed, latency), f, tempo, guidance)| {
-            let mut f = Take::new(f);
-            LiveReport::Stroke(LiveStroke {
-                stroke,
-                impact_sample,
-                cue_speed,
-                latency_instructions: latency,
-                metrics: StrokeMetrics {
-                    backswing_length: f.next(),
-                    backswing_time: f.next(),
-                    pause: f.next(),
-                    forward_time: f.next(),
-                    tempo,
-                    accel_at_impact: f.next(),
-                    elevation_change_deg: f.next(),
-                },
-                guidance,
-            })
-        });
+        .prop_map(
+            |((stroke, impact_sample, cue_speed, latency), f, tempo, guidance)| {
+                let mut f = Take::new(f);
+                LiveReport::Stroke(LiveStroke {
+                    stroke,
+                    impact_sample,
+                    cue_speed,
+                    latency_instructions: latency,
+                    metrics: StrokeMetrics {
+                        backswing_length: f.next(),
+                        backswing_time: f.next(),
+                        pause: f.next(),
+                        forward_time: f.next(),
+                        tempo,
+                        accel_at_impact: f.next(),
+                        elevation_change_deg: f.next(),
+                    },
+                    guidance,
+                })
+            },
+        );
     prop_oneof![
         2 => strokes,
         1 => stream_faults().prop_map(LiveReport::Fault),

@@ -45,18 +45,19 @@ pub fn build_release() -> Result {
 /// Target directory of the live image (the `live` feature), beside the default one.
 pub const LIVE_TARGET_DIR: &str = "target/live";
 
-/// `cargo build --release --features live` in `firmware/`, into [`LIVE_TARGET_DIR`].
+/// `cargo build --release --no-default-features --features live` in `firmware/` (the
+/// live image leaves the stroke upload out), into [`LIVE_TARGET_DIR`].
 pub fn build_live() -> Result {
     cmd::run(
         cmd::cargo()
             .args([
                 "build",
                 "--release",
+                "--no-default-features",
                 "--features",
                 "live",
-                "--target-dir",
-                LIVE_TARGET_DIR,
             ])
+            .args(["--target-dir", LIVE_TARGET_DIR])
             .current_dir(cmd::firmware_dir()),
     )
 }

@@ -240,6 +240,9 @@ impl fmt::Display for Sentence<'_> {
             LinkError::Unsupported(Unsupported::Shot) => {
                 f.write_str("this firmware is built without shot guidance (feature shot)")
             }
+            LinkError::Unsupported(Unsupported::Upload) => f.write_str(
+                "this firmware takes no stroke uploads (the live cue's image: its IMU measures the strokes)",
+            ),
             LinkError::NoAim(NoAim::ObjectBallNotHit) => f.write_str(
                 "no aim: at the ghost-ball aim the cue ball does not hit the object ball first",
             ),
@@ -515,6 +518,7 @@ mod tests {
             LinkError::MissingAim,
             LinkError::Unsupported(Unsupported::ReferenceModel),
             LinkError::Unsupported(Unsupported::Shot),
+            LinkError::Unsupported(Unsupported::Upload),
             LinkError::NoAim(NoAim::ObjectBallNotHit),
             LinkError::NoAim(NoAim::PocketUnreachable),
             LinkError::NoAim(NoAim::NotConverged),
