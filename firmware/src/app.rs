@@ -60,6 +60,8 @@ mod app {
     pub enum Item {
         /// A trace starts at this rate (Hz).
         Start(u16),
+        /// The emulated part's faults from here on.
+        Faults { bus_failing: bool, stalled: bool },
         /// A sample, `[ax, ay, az, gx, gy, gz]` raw.
         Sample([i16; 6]),
         /// The trace ended (`truncated`: the file ended before the samples its header
@@ -226,18 +228,24 @@ mod app {
                     *rate_hz = rate;
                     Item::Start(rate)
                 }
+                Some(Fed::Faults {
+                    bus_failing,
+                    stalled,
+                    ..
+                }) => Item::Faults {
+                    bus_failing,
+                    stalled,
+                },
                 Some(Fed::Sample(words)) => Item::Sample(words),
             };
             let _ = producer.enqueue(item);
-            if feed.left() == 0 && matches!(item, Item::Sample(_)) {
-                let _ = producer.enqueue(Item::End { truncated: false });
-            }
         }
         if read < want {
-            // The file ended: a trace cut short ends here.
-            if feed.left() > 0 {
-                let _ = producer.enqueue(Item::End { truncated: true });
-            }
+            // The file ended, and the trace with it (cut short if its last segment
+            // announced more samples).
+            let _ = producer.enqueue(Item::End {
+                truncated: feed.left() > 0,
+            });
             *trace = None;
         }
         if !timers::sampling() && *rate_hz > 0 {
@@ -278,6 +286,14 @@ mod app {
             return;
         };
         match item {
+            Some(Item::Faults {
+                bus_failing,
+                stalled,
+            }) => {
+                live.set_faults(bus_failing, stalled);
+                // This period's sample is the next item.
+                rtic::pend(Interrupt::TIMER1);
+            }
             Some(Item::Sample(words)) => {
                 let begun = timers::ticks();
                 let read = live.latch(words).then(|| live.read());
@@ -287,29 +303,28 @@ mod app {
                         *failing = false;
                         live.estimate(ax, gy)
                     }
-                    // One report per run of failures.
-                    Some(Err(_)) if !*failing => {
-                        *failing = true;
-                        let sample = live.samples();
-                        hand_over(
-                            detected_tx,
-                            Detected::Sensor(SensorFault::ReadFailed { sample }),
-                        );
+                    failed => {
+                        // The sample is lost; one report per run of losses.
+                        let sample = live.lose_sample();
+                        if !core::mem::replace(failing, true) {
+                            let fault = match failed {
+                                Some(_) => SensorFault::ReadFailed { sample },
+                                None => SensorFault::Stalled { sample },
+                            };
+                            hand_over(detected_tx, Detected::Sensor(fault));
+                        }
                         None
                     }
-                    None if !*failing => {
-                        *failing = true;
-                        let sample = live.samples();
-                        hand_over(
-                            detected_tx,
-                            Detected::Sensor(SensorFault::Stalled { sample }),
-                        );
-                        None
-                    }
-                    _ => None,
                 };
                 if let Some(event) = event {
-                    hand_over(detected_tx, Detected::Event { event, at });
+                    hand_over(
+                        detected_tx,
+                        Detected::Event {
+                            event,
+                            at,
+                            lost: live.trace_index(0),
+                        },
+                    );
                 }
                 // From the interrupt's start, without the emulated bus (a real part's
                 // read is the I²C peripheral's time, not the core's).
@@ -324,7 +339,14 @@ mod app {
             Some(Item::End { truncated }) => {
                 timers::stop_sampling();
                 if let Some(event) = live.finish() {
-                    hand_over(detected_tx, Detected::Event { event, at });
+                    hand_over(
+                        detected_tx,
+                        Detected::Event {
+                            event,
+                            at,
+                            lost: live.trace_index(0),
+                        },
+                    );
                 }
                 let per_tick = timers::INSTRUCTIONS_PER_TICK;
                 hand_over(
@@ -370,6 +392,7 @@ mod app {
                 Detected::Event {
                     event: StreamEvent::Stroke(stroke),
                     at,
+                    lost,
                 } => {
                     *strokes += 1;
                     let guidance = session.lock(|s| s.plan_guidance(stroke.cue_speed));
@@ -377,13 +400,13 @@ mod app {
                     defmt::info!(
                         "stroke {=u32}: impact at sample {=u64}, cue {=f32} m/s, guidance after {=u32} instructions",
                         *strokes,
-                        stroke.impact_index,
+                        stroke.impact_index + lost,
                         stroke.cue_speed,
                         latency
                     );
                     LiveReport::Stroke(LiveStroke {
                         stroke: *strokes,
-                        impact_sample: stroke.impact_index,
+                        impact_sample: stroke.impact_index + lost,
                         cue_speed: stroke.cue_speed,
                         latency_instructions: latency,
                         metrics: metrics(&stroke),

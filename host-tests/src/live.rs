@@ -38,14 +38,60 @@ pub fn csv_samples(csv: &[u8]) -> Result<Vec<TraceSample>, TraceError> {
 
 /// The binary trace the firmware reads: header, then `samples`.
 pub fn trace_binary(samples: &[TraceSample], rate_hz: u16) -> Vec<u8> {
-    let mut out = Vec::with_capacity(10 + 12 * samples.len());
-    out.extend_from_slice(b"CUE1");
-    out.extend_from_slice(&rate_hz.to_le_bytes());
-    out.extend_from_slice(&(samples.len() as u32).to_le_bytes());
-    for sample in samples {
-        for word in sample {
-            out.extend_from_slice(&word.to_le_bytes());
+    trace_binary_with_faults(samples, rate_hz, &[])
+}
+
+/// Samples `from .. from + count` of a trace delivered with the emulated part's faults
+/// (issue 15's bad inputs: a failed bus read, a stalled sensor).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FaultWindow {
+    /// First sample.
+    pub from: usize,
+    /// Samples.
+    pub count: usize,
+    /// Every bus transaction fails.
+    pub bus_failing: bool,
+    /// The part converts nothing (no data-ready).
+    pub stalled: bool,
+}
+
+fn header(out: &mut Vec<u8>, magic: &[u8; 4], word: u16, samples: usize) {
+    out.extend_from_slice(magic);
+    out.extend_from_slice(&word.to_le_bytes());
+    out.extend_from_slice(&(samples as u32).to_le_bytes());
+}
+
+/// [`trace_binary`] with fault windows (sorted, not overlapping, within the trace; the
+/// others are dropped): a `CUEF` segment for each window and one after it with the
+/// faults cleared (`firmware/src/live/feed.rs`).
+pub fn trace_binary_with_faults(
+    samples: &[TraceSample],
+    rate_hz: u16,
+    windows: &[FaultWindow],
+) -> Vec<u8> {
+    let mut out = Vec::with_capacity(10 + 12 * samples.len() + 20 * windows.len());
+    // (start, faults word) of each segment after the first.
+    let mut cuts: Vec<(usize, u16)> = Vec::new();
+    for w in windows {
+        let end = w.from.saturating_add(w.count);
+        let after_last = cuts.last().map_or(0, |&(at, _)| at);
+        if w.count == 0 || w.from < after_last || end > samples.len() {
+            continue;
         }
+        cuts.push((w.from, u16::from(w.bus_failing) | u16::from(w.stalled) << 1));
+        cuts.push((end, 0));
+    }
+    let mut start = 0;
+    let mut magic_word = (b"CUE1", rate_hz);
+    for (at, faults) in cuts.into_iter().chain([(samples.len(), 0)]) {
+        header(&mut out, magic_word.0, magic_word.1, at - start);
+        for sample in &samples[start..at] {
+            for word in sample {
+                out.extend_from_slice(&word.to_le_bytes());
+            }
+        }
+        start = at;
+        magic_word = (b"CUEF", faults);
     }
     out
 }
@@ -206,6 +252,47 @@ mod tests {
         assert_eq!(&binary[12..14], &(-2i16).to_le_bytes());
         assert_eq!(&binary[20..22], &[0x00, 0x80]);
         assert_eq!(&binary[22..24], &[0xFF, 0x7F]);
+    }
+
+    #[test]
+    fn a_fault_window_is_a_segment_of_its_own_and_one_after_it() {
+        let samples = [[7i16; 6]; 10];
+        let window = FaultWindow {
+            from: 3,
+            count: 4,
+            bus_failing: false,
+            stalled: true,
+        };
+        let binary = trace_binary_with_faults(&samples, 3333, &[window]);
+        assert_eq!(binary.len(), 3 * 10 + 10 * 12);
+        let at = |i: usize| &binary[i..i + 10];
+        assert_eq!(
+            at(0),
+            [
+                b"CUE1".as_slice(),
+                &3333u16.to_le_bytes(),
+                &3u32.to_le_bytes()
+            ]
+            .concat()
+        );
+        assert_eq!(
+            at(10 + 36),
+            [b"CUEF".as_slice(), &2u16.to_le_bytes(), &4u32.to_le_bytes()].concat()
+        );
+        assert_eq!(
+            at(2 * 10 + 84),
+            [b"CUEF".as_slice(), &0u16.to_le_bytes(), &3u32.to_le_bytes()].concat()
+        );
+        // A window past the end, or overlapping an earlier one, is dropped.
+        let past = FaultWindow {
+            from: 8,
+            count: 5,
+            ..window
+        };
+        assert_eq!(
+            trace_binary_with_faults(&samples, 3333, &[past]),
+            trace_binary(&samples, 3333)
+        );
     }
 
     #[test]

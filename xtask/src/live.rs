@@ -12,7 +12,9 @@
 //! from the start of the interrupt that delivered the sample the impact was detected on
 //! to the guidance computed; `guidance`: the planned shot (`--plan`, a `shot` request's
 //! JSON) played at the stroke's speed, the `shot` answer's keys, or `null` without a
-//! plan). A fault is a line `{"fault":{...}}`, a sensor failure `{"sensor":{...}}`; the
+//! plan). `--stall FROM:COUNT` and `--bus-fail FROM:COUNT` make the emulated part stall
+//! or its bus fail for those samples. A fault is a line `{"fault":{...}}`, a sensor
+//! failure `{"sensor":{...}}`; the
 //! last line is the summary `{"summary":{...}}`. Everything else (the QEMU command,
 //! the firmware's log) goes to stderr.
 
@@ -44,6 +46,14 @@ pub struct Args {
     /// is replaced by each stroke's).
     #[arg(long, value_name = "FILE")]
     pub plan: Option<PathBuf>,
+    /// Stall the emulated part (no conversion, no data-ready) for COUNT samples from
+    /// sample FROM (0-based): `FROM:COUNT`; may be repeated.
+    #[arg(long, value_name = "FROM:COUNT", value_parser = window)]
+    pub stall: Vec<(usize, usize)>,
+    /// Fail every bus transaction for COUNT samples from sample FROM: `FROM:COUNT`; may
+    /// be repeated.
+    #[arg(long, value_name = "FROM:COUNT", value_parser = window)]
+    pub bus_fail: Vec<(usize, usize)>,
     /// Kill QEMU after this many seconds and fail.
     #[arg(long, default_value_t = 600)]
     pub timeout: u64,
@@ -64,10 +74,24 @@ impl Args {
             trace: traces.join("three-strokes-6667.csv"),
             odr: 6667,
             plan: Some(traces.join("plan-cut-to-corner.json")),
+            stall: Vec::new(),
+            bus_fail: Vec::new(),
             timeout: 120,
             elf: None,
         }
     }
+}
+
+/// `FROM:COUNT`.
+fn window(text: &str) -> std::result::Result<(usize, usize), String> {
+    let (from, count) = text
+        .split_once(':')
+        .ok_or_else(|| format!("`{text}` is not FROM:COUNT"))?;
+    let number = |s: &str| {
+        s.parse::<usize>()
+            .map_err(|_| format!("`{s}` in `{text}` is not a sample count"))
+    };
+    Ok((number(from)?, number(count)?))
 }
 
 /// Reads `path`, at most [`MAX_TRACE_BYTES`].
@@ -145,10 +169,36 @@ pub fn run(args: &Args) -> Result {
         args.odr,
         args.trace.display()
     );
+    let mut windows: Vec<live::FaultWindow> = Vec::new();
+    for (list, stalled) in [(&args.stall, true), (&args.bus_fail, false)] {
+        windows.extend(list.iter().map(|&(from, count)| live::FaultWindow {
+            from,
+            count,
+            bus_failing: !stalled,
+            stalled,
+        }));
+    }
+    windows.sort_by_key(|w| w.from);
+    for pair in windows.windows(2) {
+        if pair[0].from + pair[0].count > pair[1].from {
+            return Err(Failure::new(format!(
+                "the fault windows from sample {} and {} overlap",
+                pair[0].from, pair[1].from
+            )));
+        }
+    }
+    if let Some(w) = windows.iter().find(|w| w.from + w.count > samples.len()) {
+        return Err(Failure::new(format!(
+            "the fault window {}:{} runs past the trace's {} samples",
+            w.from,
+            w.count,
+            samples.len()
+        )));
+    }
     let played = live::play(
         &elf,
         Some(&defmt_print),
-        &live::trace_binary(&samples, args.odr),
+        &live::trace_binary_with_faults(&samples, args.odr, &windows),
         plan.as_ref(),
         Duration::from_secs(args.timeout),
     )

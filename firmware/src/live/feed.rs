@@ -10,11 +10,17 @@
 //! | 4 | samples that follow (`u32` little-endian) |
 //! | 12 each | `[ax, ay, az, gx, gy, gz]`, raw LSB, `i16` little-endian |
 //!
-//! Another header may follow the last sample (a new trace). [`Feed`] takes the bytes
-//! one at a time, with no buffer beyond one sample.
+//! After a segment's last sample another header may follow: `CUE1`, a new trace (the
+//! estimator starts over), or `CUEF`, more samples of the same trace delivered with
+//! the emulated part's faults set by its `u16` (bit 0: every bus transaction fails,
+//! bit 1: the part is stalled, no conversion; 0: none) for a failed bus read or a
+//! stalled sensor (issue 15's bad inputs). The trace ends with the file. [`Feed`] takes
+//! the bytes one at a time, with no buffer beyond one sample.
 
-/// The header's magic.
+/// A trace's header's magic.
 pub const MAGIC: [u8; 4] = *b"CUE1";
+/// A fault segment's header's magic.
+pub const FAULT_MAGIC: [u8; 4] = *b"CUEF";
 /// Header bytes.
 pub const HEADER_LEN: usize = 10;
 /// Bytes per sample.
@@ -27,6 +33,15 @@ pub enum Fed {
     Header {
         /// Output data rate (Hz).
         rate_hz: u16,
+        /// Samples that follow.
+        samples: u32,
+    },
+    /// A fault segment's header: the faults set for the samples that follow.
+    Faults {
+        /// Every bus transaction fails.
+        bus_failing: bool,
+        /// The part converts nothing.
+        stalled: bool,
         /// Samples that follow.
         samples: u32,
     },
@@ -77,14 +92,23 @@ impl Feed {
         self.filled = 0;
         let b = self.bytes;
         if self.left == 0 {
-            if b[..4] != MAGIC {
-                return Some(Fed::BadMagic);
-            }
+            let word = u16::from_le_bytes([b[4], b[5]]);
             let samples = u32::from_le_bytes([b[6], b[7], b[8], b[9]]);
             self.left = samples;
-            return Some(Fed::Header {
-                rate_hz: u16::from_le_bytes([b[4], b[5]]),
-                samples,
+            return Some(match [b[0], b[1], b[2], b[3]] {
+                MAGIC => Fed::Header {
+                    rate_hz: word,
+                    samples,
+                },
+                FAULT_MAGIC => Fed::Faults {
+                    bus_failing: word & 1 != 0,
+                    stalled: word & 2 != 0,
+                    samples,
+                },
+                _ => {
+                    self.left = 0;
+                    Fed::BadMagic
+                }
             });
         }
         self.left -= 1;

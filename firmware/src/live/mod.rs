@@ -18,6 +18,8 @@ pub enum Detected {
         event: StreamEvent,
         /// When its interrupt began.
         at: u32,
+        /// Samples lost before it (the estimator's indices do not count them).
+        lost: u64,
     },
     /// The IMU failed.
     Sensor(SensorFault),

@@ -22,6 +22,9 @@ pub enum StartError {
 pub struct Sampler {
     part: EmulatedLsm6dsox,
     estimator: StreamingEstimator,
+    /// Samples the estimator never got (a failed read, a stalled part): its indices
+    /// count the samples it took, the trace's count these too.
+    lost: u64,
 }
 
 impl Sampler {
@@ -34,7 +37,11 @@ impl Sampler {
             .map_err(StartError::Imu)?;
         let estimator =
             StreamingEstimator::new(&StreamConfig::new(rate_hz)).map_err(StartError::Rate)?;
-        Ok(Self { part, estimator })
+        Ok(Self {
+            part,
+            estimator,
+            lost: 0,
+        })
     }
 
     /// The conversion: the part latches `words` (`[ax, ay, az, gx, gy, gz]`) and
@@ -61,9 +68,21 @@ impl Sampler {
         self.estimator.finish()
     }
 
-    /// Samples since the start or the last [`Self::finish`].
+    /// Trace samples since the start, taken or lost.
     pub fn samples(&self) -> u64 {
-        self.estimator.samples()
+        self.estimator.samples() + self.lost
+    }
+
+    /// Counts a sample the estimator did not get; returns its trace index.
+    pub fn lose_sample(&mut self) -> u64 {
+        self.lost += 1;
+        self.samples() - 1
+    }
+
+    /// A trace index for an estimator index (the samples lost so far come before it:
+    /// exact for reports made as they happen).
+    pub fn trace_index(&self, estimator_index: u64) -> u64 {
+        estimator_index + self.lost
     }
 
     /// Fault injection (the bad-input cases of issue 15): a failing bus, a stalled part.
