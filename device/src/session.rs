@@ -248,8 +248,9 @@ impl<U: BorrowMut<Upload>> Session<U> {
         Err(LinkError::Unsupported(Unsupported::Shot))
     }
 
-    /// `plan`: checked (the scene, the aim or pocket, and the speed it carries) against
-    /// the defaults in force, then kept; `None` forgets it.
+    /// `plan`: checked (the scene, the parameters, the tip, the aim or pocket; not its
+    /// speed, which each stroke replaces) against the defaults in force, then kept;
+    /// `None` forgets it.
     #[cfg(feature = "shot")]
     #[inline(never)]
     fn plan(

@@ -131,9 +131,6 @@ mod app {
         let (producer, consumer) = cx.local.queue.split();
         let (detected_tx, detected_rx) = cx.local.detected.split();
         defmt::info!("serving link schema {=u32:#010x} on UART0", SCHEMA_HASH);
-        if board.trace.is_none() {
-            defmt::info!("no IMU trace: the live cue waits");
-        }
         (
             Shared {
                 link: board.serial,
@@ -220,11 +217,8 @@ mod app {
                     *trace = None;
                     return;
                 }
-                Some(Fed::Header {
-                    rate_hz: rate,
-                    samples,
-                }) => {
-                    defmt::info!("IMU trace: {=u32} samples at {=u16} Hz", samples, rate);
+                Some(Fed::Header { rate_hz: rate, .. }) => {
+                    defmt::info!("IMU trace: {=u16} Hz", rate);
                     *rate_hz = rate;
                     Item::Start(rate)
                 }
@@ -256,8 +250,6 @@ mod app {
     /// The data-ready: one sample through the part, the driver and the estimator.
     #[task(binds = TIMER1, priority = 3, local = [consumer, sampler, cost, detected_tx, failing: bool = false])]
     fn sample(cx: sample::Context) {
-        let at = timers::ticks();
-        timers::acknowledge_sample();
         let sample::LocalResources {
             consumer,
             sampler,
@@ -266,6 +258,11 @@ mod app {
             failing,
             ..
         } = cx.local;
+        // Emulation only: spread the readings over the timer's tick (the instructions
+        // before `at` are not counted).
+        timers::dither(cost.samples);
+        let at = timers::ticks();
+        timers::acknowledge_sample();
         let mut item = consumer.dequeue();
         if consumer.len() < RESUME_AT {
             rtic::pend(Interrupt::UART1RX);
@@ -299,9 +296,9 @@ mod app {
                 let read = live.latch(words).then(|| live.read());
                 let bus_ticks = timers::ticks().wrapping_sub(begun);
                 let event = match read {
-                    Some(Ok((ax, gy))) => {
+                    Some(Ok(words)) => {
                         *failing = false;
-                        live.estimate(ax, gy)
+                        live.estimate(words)
                     }
                     failed => {
                         // The sample is lost; one report per run of losses.
@@ -317,14 +314,7 @@ mod app {
                     }
                 };
                 if let Some(event) = event {
-                    hand_over(
-                        detected_tx,
-                        Detected::Event {
-                            event,
-                            at,
-                            lost: live.trace_index(0),
-                        },
-                    );
+                    hand_over(detected_tx, Detected::event(live, event, at));
                 }
                 // From the interrupt's start, without the emulated bus (a real part's
                 // read is the I²C peripheral's time, not the core's).
@@ -339,14 +329,7 @@ mod app {
             Some(Item::End { truncated }) => {
                 timers::stop_sampling();
                 if let Some(event) = live.finish() {
-                    hand_over(
-                        detected_tx,
-                        Detected::Event {
-                            event,
-                            at,
-                            lost: live.trace_index(0),
-                        },
-                    );
+                    hand_over(detected_tx, Detected::event(live, event, at));
                 }
                 let per_tick = timers::INSTRUCTIONS_PER_TICK;
                 hand_over(
@@ -354,8 +337,7 @@ mod app {
                     Detected::End(TraceEnd {
                         samples: u64::from(cost.samples),
                         truncated,
-                        work_mean_instructions: cost.ticks as f32 * per_tick as f32
-                            / cost.samples.max(1) as f32,
+                        work_instructions: cost.ticks * u64::from(per_tick),
                         work_max_instructions: cost.max_ticks * per_tick,
                     }),
                 );
@@ -393,14 +375,14 @@ mod app {
                     event: StreamEvent::Stroke(stroke),
                     at,
                     lost,
+                    wobble,
                 } => {
                     *strokes += 1;
                     let guidance = session.lock(|s| s.plan_guidance(stroke.cue_speed));
                     let latency = timers::ticks().wrapping_sub(at) * timers::INSTRUCTIONS_PER_TICK;
                     defmt::info!(
-                        "stroke {=u32}: impact at sample {=u64}, cue {=f32} m/s, guidance after {=u32} instructions",
+                        "stroke {=u32}: cue {=f32} m/s, guidance after {=u32} instructions",
                         *strokes,
-                        stroke.impact_index + lost,
                         stroke.cue_speed,
                         latency
                     );
@@ -409,7 +391,8 @@ mod app {
                         impact_sample: stroke.impact_index + lost,
                         cue_speed: stroke.cue_speed,
                         latency_instructions: latency,
-                        metrics: metrics(&stroke),
+                        // 0.07 °/s per count at ±2000 dps (`cuesight_sensors::lsm6dsox`).
+                        metrics: metrics(&stroke, wobble.rms(0.07)),
                         guidance,
                     })
                 }
@@ -425,7 +408,7 @@ mod app {
                     LiveReport::Sensor(fault)
                 }
                 Detected::End(end) => {
-                    defmt::info!("IMU trace ended after {=u64} samples", end.samples);
+                    defmt::info!("IMU trace ended");
                     LiveReport::TraceEnd(end)
                 }
             };

@@ -66,6 +66,9 @@ pub struct StrokeMetrics {
     /// Cue elevation change from the address to the contact (degrees, butt up
     /// positive), from the gyro.
     pub elevation_change_deg: f32,
+    /// Side-to-side wobble: the RMS deviation of the yaw rate from its mean while the
+    /// cue moved, from the start of the stroke's motion to the contact (°/s).
+    pub wobble_dps: f32,
 }
 
 /// An IMU failure, with the sample count when it was seen.
@@ -97,8 +100,16 @@ pub struct TraceEnd {
     pub samples: u64,
     /// The trace file ended before its header's sample count.
     pub truncated: bool,
-    /// Per-sample work, the emulated bus excluded (instructions, mean and max).
-    pub work_mean_instructions: f32,
-    /// The most of any sample.
+    /// Per-sample work, the emulated bus excluded: the instructions of every sample
+    /// (resolution 40 per sample)...
+    pub work_instructions: u64,
+    /// ...and the most of any one.
     pub work_max_instructions: u32,
+}
+
+impl TraceEnd {
+    /// The mean per-sample work (instructions).
+    pub fn work_mean_instructions(&self) -> f64 {
+        self.work_instructions as f64 / self.samples.max(1) as f64
+    }
 }

@@ -29,8 +29,8 @@ pub enum Request {
     Stroke(StrokeChunk),
     /// Shot guidance (`cuesight shot`).
     Shot(ShotRequest),
-    /// The planned shot for the live cue, kept for the strokes that follow (`speed` is
-    /// each stroke's; the plan is checked at its own); `null` forgets it.
+    /// The planned shot for the live cue, kept for the strokes that follow (its `speed`
+    /// is replaced by each stroke's); `null` forgets it.
     Plan(Option<ShotRequest>),
     /// End the session: the device answers, then exits.
     Shutdown(Empty),

@@ -1122,7 +1122,7 @@ fn stream_faults() -> BoxedStrategy<StreamFault> {
 fn live_reports() -> BoxedStrategy<LiveReport> {
     let strokes = (
         (u32s(), u64s(), f32s(), u32s()),
-        floats(6),
+        floats(7),
         prop::option::of(f32s()),
         prop::option::of(prop_oneof![
             shot_answers().prop_map(Ok),
@@ -1145,6 +1145,7 @@ fn live_reports() -> BoxedStrategy<LiveReport> {
                         tempo,
                         accel_at_impact: f.next(),
                         elevation_change_deg: f.next(),
+                        wobble_dps: f.next(),
                     },
                     guidance,
                 })
@@ -1159,11 +1160,11 @@ fn live_reports() -> BoxedStrategy<LiveReport> {
             Just(SensorFault::NotStarted),
         ]
         .prop_map(LiveReport::Sensor),
-        1 => (u64s(), any::<bool>(), f32s(), u32s()).prop_map(|(samples, truncated, mean, max)| {
+        1 => (u64s(), any::<bool>(), u64s(), u32s()).prop_map(|(samples, truncated, work, max)| {
             LiveReport::TraceEnd(TraceEnd {
                 samples,
                 truncated,
-                work_mean_instructions: mean,
+                work_instructions: work,
                 work_max_instructions: max,
             })
         }),

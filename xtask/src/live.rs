@@ -133,7 +133,7 @@ fn summary_line(end: Option<&TraceEnd>, strokes: usize, faults: usize) -> Value 
         "faults": faults,
         "samples": end.map(|e| e.samples),
         "truncated": end.map(|e| e.truncated),
-        "work_mean_instructions": end.map(|e| e.work_mean_instructions),
+        "work_mean_instructions": end.map(TraceEnd::work_mean_instructions),
         "work_max_instructions": end.map(|e| e.work_max_instructions),
     }})
 }

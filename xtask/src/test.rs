@@ -310,9 +310,14 @@ fn live_cue() -> Result {
     let mut test = e2e_test("e2e_live");
     // The 100-stroke acceptance stream (about 4 minutes) is run by hand:
     // `cargo test -p cuesight-host --test e2e_live -- --ignored --nocapture`.
-    test.args(["--ignored", "--nocapture", "--skip", "100_synthetic_strokes"])
-        .env("CUESIGHT_LIVE_ELF", qemu::live_elf_path())
-        .env("DEFMT_PRINT", defmt_print);
+    test.args([
+        "--ignored",
+        "--nocapture",
+        "--skip",
+        "100_synthetic_strokes",
+    ])
+    .env("CUESIGHT_LIVE_ELF", qemu::live_elf_path())
+    .env("DEFMT_PRINT", defmt_print);
     cmd::run_with_timeout(&mut test, Duration::from_secs(600))
 }
 

@@ -20,6 +20,9 @@ pub enum Detected {
         at: u32,
         /// Samples lost before it (the estimator's indices do not count them).
         lost: u64,
+        /// The stroke's yaw-rate statistics (its wobble, computed by the reporting
+        /// task, not in the interrupt).
+        wobble: cuesight_sensors::Wobble,
     },
     /// The IMU failed.
     Sensor(SensorFault),
@@ -27,8 +30,21 @@ pub enum Detected {
     End(TraceEnd),
 }
 
+impl Detected {
+    /// The estimator's `event`, detected on the sample whose interrupt began at `at`.
+    #[inline(never)]
+    pub fn event(sampler: &sampler::Sampler, event: StreamEvent, at: u32) -> Self {
+        Detected::Event {
+            event,
+            at,
+            lost: sampler.trace_index(0),
+            wobble: sampler.wobble(),
+        }
+    }
+}
+
 /// A stroke's metrics for the live report (`docs/sensors.md` §11).
-pub fn metrics(stroke: &StreamStroke) -> StrokeMetrics {
+pub fn metrics(stroke: &StreamStroke, wobble_dps: f32) -> StrokeMetrics {
     StrokeMetrics {
         backswing_length: stroke.backswing_length,
         backswing_time: stroke.backswing_time,
@@ -37,5 +53,6 @@ pub fn metrics(stroke: &StreamStroke) -> StrokeMetrics {
         tempo: stroke.tempo(),
         accel_at_impact: stroke.accel_at_impact,
         elevation_change_deg: stroke.tilt_at_impact * (180.0 / core::f32::consts::PI),
+        wobble_dps,
     }
 }

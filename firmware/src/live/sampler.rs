@@ -6,7 +6,7 @@
 use cuesight_sensors::emulated::{BusError, EmulatedLsm6dsox, Sa0, SensorLatch};
 use cuesight_sensors::lsm6dsox::{Error as ImuError, ADDRESS_SA0_LOW};
 use cuesight_sensors::{
-    Lsm6dsox, StreamConfig, StreamConfigError, StreamEvent, StreamingEstimator,
+    Lsm6dsox, StreamConfig, StreamConfigError, StreamEvent, StreamingEstimator, Wobble,
 };
 
 /// Why sampling could not start.
@@ -22,6 +22,8 @@ pub enum StartError {
 pub struct Sampler {
     part: EmulatedLsm6dsox,
     estimator: StreamingEstimator,
+    /// The yaw rate's spread over the stroke in progress (restarted when one starts).
+    wobble: Wobble,
     /// Samples the estimator never got (a failed read, a stalled part): its indices
     /// count the samples it took, the trace's count these too.
     lost: u64,
@@ -40,6 +42,7 @@ impl Sampler {
         Ok(Self {
             part,
             estimator,
+            wobble: Wobble::new(),
             lost: 0,
         })
     }
@@ -50,16 +53,30 @@ impl Sampler {
         self.part.latch(words).accel != SensorLatch::Stalled
     }
 
-    /// The driver reads the sample over the bus: `(ax, gy)`.
-    pub fn read(&mut self) -> Result<(i16, i16), ImuError<BusError>> {
+    /// The driver reads the sample over the bus: `[ax, gy, gz]`.
+    pub fn read(&mut self) -> Result<[i16; 3], ImuError<BusError>> {
         let sample = Lsm6dsox::new(&mut self.part, ADDRESS_SA0_LOW).read_raw()?;
-        Ok((sample.accel[0], sample.gyro[1]))
+        Ok([sample.accel[0], sample.gyro[1], sample.gyro[2]])
     }
 
-    /// The estimator's step.
+    /// The estimator's step (the along-cue acceleration `ax`, the pitch rate `gy`), and
+    /// the yaw rate `gz` into the wobble while a stroke runs.
     #[inline(always)]
-    pub fn estimate(&mut self, ax: i16, gy: i16) -> Option<StreamEvent> {
-        self.estimator.push_raw(ax, Some(gy))
+    pub fn estimate(&mut self, [ax, gy, gz]: [i16; 3]) -> Option<StreamEvent> {
+        let was_moving = self.estimator.in_stroke();
+        let event = self.estimator.push_raw(ax, Some(gy));
+        if self.estimator.in_stroke() {
+            if !was_moving {
+                self.wobble.restart();
+            }
+            self.wobble.push(gz);
+        }
+        event
+    }
+
+    /// The yaw-rate statistics of the stroke in progress or just reported.
+    pub fn wobble(&self) -> Wobble {
+        self.wobble
     }
 
     /// The trace ended: a stroke being integrated is reported as ended mid-stroke, and

@@ -68,7 +68,7 @@ fn live_summary(f: &mut fmt::Formatter<'_>, report: &LiveReport) -> fmt::Result 
             "live: trace ended after {} samples{}; {:.0} instructions per sample (mean), {} (max)",
             end.samples,
             if end.truncated { " (the file was cut short)" } else { "" },
-            end.work_mean_instructions,
+            end.work_mean_instructions(),
             end.work_max_instructions
         )
         }

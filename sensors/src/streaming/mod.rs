@@ -65,9 +65,11 @@ mod phases;
 mod rest;
 #[cfg(test)]
 mod tests;
+mod wobble;
 
 pub use config::{StreamConfig, StreamConfigError, MAX_STREAM_RATE_HZ};
 pub use event::{StreamEvent, StreamFault, StreamStroke};
+pub use wobble::Wobble;
 
 use config::{Plan, RING};
 use integral::Stroke;

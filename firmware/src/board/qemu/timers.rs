@@ -23,6 +23,18 @@ const CTRL_INT_ENABLE: u32 = 1 << 3;
 /// per tick; `bench-firmware` calibrates this).
 pub const INSTRUCTIONS_PER_TICK: u32 = 40;
 
+/// Waits `phase % 40` turns of a 3-instruction loop (`phase` = the sample count), so
+/// that the next [`ticks`] readings fall at every phase of TIMER0's 40-instruction tick
+/// in turn (3 and 40 are coprime): a task that starts at the same phase every period
+/// would otherwise read every duration with the same rounding, up to 40 instructions
+/// off, and the mean with it. Dithered, the rounding averages out of the mean.
+#[inline(always)]
+pub fn dither(phase: u32) {
+    for _ in 0..phase % INSTRUCTIONS_PER_TICK {
+        cortex_m::asm::nop();
+    }
+}
+
 /// Starts TIMER0 counting down from `u32::MAX`, no interrupt.
 pub(super) fn start_uptime() {
     write_at(TIMER0 + RELOAD, u32::MAX);
