@@ -16,7 +16,7 @@ use std::time::Duration;
 use cuesight_device::{Identity, Session};
 use cuesight_host::firmware::find_defmt_print;
 use cuesight_host::live::{csv_samples, play, trace_binary};
-use cuesight_link::live::LiveReport;
+use cuesight_link::live::{LiveReport, LiveStroke};
 use cuesight_link::{Request, ShotRequest};
 use cuesight_sensors::StreamFault;
 use serde_json::Value;
@@ -37,6 +37,17 @@ fn live_elf() -> PathBuf {
         || repo().join("firmware/target/live/thumbv7em-none-eabihf/release/cuesight-firmware"),
         PathBuf::from,
     )
+}
+
+/// The stroke reports among `reports`.
+fn stroke_reports(reports: &[LiveReport]) -> Vec<&LiveStroke> {
+    reports
+        .iter()
+        .filter_map(|r| match r {
+            LiveReport::Stroke(s) => Some(s),
+            _ => None,
+        })
+        .collect()
 }
 
 /// One trace: its file, the speed tolerance (relative; 1 % at 6.66 kHz, 1.5 % at
@@ -94,14 +105,7 @@ fn the_live_cue_reports_every_stroke_of_the_shipped_traces_with_the_hosts_guidan
             "{name}: the firmware did not exit cleanly\n{}",
             played.ended.log.join("\n")
         );
-        let reported: Vec<_> = played
-            .reports
-            .iter()
-            .filter_map(|r| match r {
-                LiveReport::Stroke(s) => Some(s),
-                _ => None,
-            })
-            .collect();
+        let reported = stroke_reports(&played.reports);
         let faults: Vec<_> = played
             .reports
             .iter()
@@ -235,14 +239,7 @@ fn the_live_cue_detects_100_synthetic_strokes() {
             Duration::from_secs(900),
         )
         .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
-        let reported: Vec<_> = played
-            .reports
-            .iter()
-            .filter_map(|r| match r {
-                LiveReport::Stroke(s) => Some(s),
-                _ => None,
-            })
-            .collect();
+        let reported = stroke_reports(&played.reports);
         let faults: Vec<_> = played
             .reports
             .iter()
