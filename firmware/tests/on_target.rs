@@ -42,7 +42,7 @@ mod tests {
     #[test]
     fn memory_routines_copy_and_clear_every_alignment_and_length() {
         use cuesight_firmware::mem;
-        #[repr(align(4))]
+        #[repr(align(8))]
         struct Buffer([u8; 48]);
         const UNTOUCHED: u8 = 0xa5;
         let pattern = |i: usize| (7 * i + 3) as u8;
@@ -53,27 +53,34 @@ mod tests {
         for from in 0..4 {
             for to in 0..4 {
                 for len in 0..=40 {
-                    // The generic forms at every offset, the `4` forms at offset 0 of the
-                    // 4-aligned buffers (their contract).
-                    for word_forms in [false, true] {
-                        if word_forms && (from != 0 || to != 0) {
+                    // The generic forms at every offset, the `4` and `8` forms at offset 0
+                    // of the 8-aligned buffers (their contract).
+                    for form in [1, 4, 8] {
+                        if form > 1 && (from != 0 || to != 0) {
                             continue;
                         }
                         let mut copied = Buffer([UNTOUCHED; 48]);
                         let mut cleared = Buffer([UNTOUCHED; 48]);
                         // SAFETY: both ranges lie inside their 48-byte buffers
-                        // (3 + 40 <= 48), distinct buffers; the `4` forms only at offset 0
-                        // of 4-aligned ones.
+                        // (3 + 40 <= 48), distinct buffers; the `4` and `8` forms only at
+                        // offset 0 of 8-aligned ones.
                         unsafe {
                             let d = copied.0.as_mut_ptr().add(to);
                             let s = src.0.as_ptr().add(from);
                             let c = cleared.0.as_mut_ptr().add(to);
-                            if word_forms {
-                                mem::__aeabi_memcpy4(d, s, len);
-                                mem::__aeabi_memclr4(c, len);
-                            } else {
-                                mem::__aeabi_memcpy(d, s, len);
-                                mem::__aeabi_memclr(c, len);
+                            match form {
+                                8 => {
+                                    mem::__aeabi_memcpy8(d, s, len);
+                                    mem::__aeabi_memclr8(c, len);
+                                }
+                                4 => {
+                                    mem::__aeabi_memcpy4(d, s, len);
+                                    mem::__aeabi_memclr4(c, len);
+                                }
+                                _ => {
+                                    mem::__aeabi_memcpy(d, s, len);
+                                    mem::__aeabi_memclr(c, len);
+                                }
                             }
                         }
                         for i in 0..48 {
