@@ -31,20 +31,27 @@ pub struct Sampler {
 
 impl Sampler {
     /// Brings the part up with the driver's `init` (chip id, reset, 6.66 kHz ±16 g /
-    /// ±2000 dps, block data update) and an estimator for `rate_hz`.
-    pub fn start(rate_hz: f32) -> Result<Self, StartError> {
+    /// ±2000 dps, block data update) and an estimator for `rate_hz`, into `slot`
+    /// (`None` if either fails).
+    ///
+    /// Fills the slot rather than returning the sampler: a 1.6 KB `Result` moved into
+    /// an `Option` is copied twice more (flash and stack in the sampling interrupt).
+    #[inline(never)]
+    pub fn start(slot: &mut Option<Self>, rate_hz: f32) -> Result<(), StartError> {
+        *slot = None;
         let mut part = EmulatedLsm6dsox::new(Sa0::Low);
         Lsm6dsox::new(&mut part, ADDRESS_SA0_LOW)
             .init()
             .map_err(StartError::Imu)?;
         let estimator =
             StreamingEstimator::new(&StreamConfig::new(rate_hz)).map_err(StartError::Rate)?;
-        Ok(Self {
+        *slot = Some(Self {
             part,
             estimator,
             wobble: Wobble::new(),
             lost: 0,
-        })
+        });
+        Ok(())
     }
 
     /// The conversion: the part latches `words` (`[ax, ay, az, gx, gy, gz]`) and
