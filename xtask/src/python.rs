@@ -90,9 +90,12 @@ fn venv_python() -> Result<PathBuf> {
 }
 
 /// The `cuesight` CLI the tests compare with, built if it is not (the debug profile, as
-/// "host: tests" leaves it).
+/// "host: tests" leaves it). `--workspace`, not `-p cuesight-host`: the features are
+/// then the ones "host: tests" built the binary with, so after that step this is a
+/// no-op, where `-p` resolved other features (no `schema` on core, link and sensors)
+/// and rebuilt core, link, sensors and the CLI (57 s of a bare-machine CI run).
 fn cli() -> Result<PathBuf> {
-    cmd::run(cmd::cargo().args(["build", "-p", "cuesight-host", "--bin", "cuesight"]))?;
+    cmd::run(cmd::cargo().args(["build", "--workspace", "--bin", "cuesight"]))?;
     Ok(host_target_dir().join("debug").join("cuesight"))
 }
 

@@ -40,7 +40,7 @@ const STEPS: &[Step] = &[
     },
     Step {
         title: "host: tests",
-        action: || cargo_at_root(&["test", "--workspace"]),
+        action: host_tests,
     },
     Step {
         title: "host: rustdoc, warnings denied",
@@ -130,6 +130,15 @@ const STEPS: &[Step] = &[
         action: crate::fuzz::check,
     },
 ];
+
+/// `cargo test --workspace` as two runs: the unit, binary and integration tests, then the
+/// doctests. Named targets leave the examples out: plain `cargo test` compiles each one
+/// (never runs it), in the dev profile where `cuesight-host` is optimised, and "host:
+/// clippy" (`--all-targets`) has already checked them.
+fn host_tests() -> Result {
+    cargo_at_root(&["test", "--workspace", "--tests"])?;
+    cargo_at_root(&["test", "--workspace", "--doc"])
+}
 
 /// `cargo doc --no-deps --workspace` with every rustdoc warning an error (broken
 /// intra-doc links, bad code-block attributes, ...). The doctests themselves run in
