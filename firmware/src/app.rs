@@ -36,7 +36,7 @@ mod app {
     use cuesight_firmware::live::{metrics, Detected};
     use cuesight_firmware::{serve, shots};
     use cuesight_link::frame::{FrameReader, MAX_FRAME};
-    use cuesight_link::live::{LiveReport, LiveStroke, SensorFault, TraceEnd};
+    use cuesight_link::live::{FollowThrough, LiveReport, LiveStroke, SensorFault, TraceEnd};
     use cuesight_link::SCHEMA_HASH;
     use cuesight_sensors::StreamEvent;
     use heapless::spsc::{Consumer, Producer, Queue};
@@ -359,12 +359,13 @@ mod app {
 
     /// Strokes, faults and trace ends from `sample`: the guidance, the unprompted
     /// report frame, the log.
-    #[task(binds = DUALTIMER, priority = 2, shared = [link, session], local = [detected_rx, report_out, strokes: u32 = 0])]
+    #[task(binds = DUALTIMER, priority = 2, shared = [link, session], local = [detected_rx, report_out, strokes: u32 = 0, last_impact: u64 = u64::MAX])]
     fn report(cx: report::Context) {
         let report::LocalResources {
             detected_rx,
             report_out,
             strokes,
+            last_impact,
             ..
         } = cx.local;
         let report::SharedResources {
@@ -381,6 +382,7 @@ mod app {
                     wobble,
                 } => {
                     *strokes += 1;
+                    *last_impact = stroke.impact_index;
                     let guidance = session.lock(|s| s.plan_guidance(stroke.cue_speed));
                     let latency = timers::ticks().wrapping_sub(at) * timers::INSTRUCTIONS_PER_TICK;
                     defmt::info!(
@@ -397,6 +399,27 @@ mod app {
                         // 0.07 °/s per count at ±2000 dps (`cuesight_sensors::lsm6dsox`).
                         metrics: metrics(&stroke, wobble.rms(0.07)),
                         guidance,
+                    })
+                }
+                Detected::Event {
+                    event:
+                        StreamEvent::FollowThrough {
+                            impact,
+                            length,
+                            time,
+                        },
+                    ..
+                } => {
+                    // The estimator measures only the strokes it reports, so this is
+                    // the last one; a follow-through of another is not sent.
+                    if impact != *last_impact {
+                        continue;
+                    }
+                    defmt::info!("stroke {=u32}: follow-through {=f32} m", *strokes, length);
+                    LiveReport::FollowThrough(FollowThrough {
+                        stroke: *strokes,
+                        length,
+                        time,
                     })
                 }
                 Detected::Event {

@@ -25,6 +25,9 @@ pub enum LiveReport {
     Sensor(SensorFault),
     /// The emulated IMU's trace ended (QEMU only).
     TraceEnd(TraceEnd),
+    /// The cue's travel after a stroke's tip contact, once it has stopped (a later
+    /// frame than the stroke's: the guidance does not wait for it).
+    FollowThrough(FollowThrough),
 }
 
 /// A detected stroke.
@@ -69,6 +72,18 @@ pub struct StrokeMetrics {
     /// Side-to-side wobble: the RMS deviation of the yaw rate from its mean while the
     /// cue moved, from the start of the stroke's motion to the contact (°/s).
     pub wobble_dps: f32,
+}
+
+/// A stroke's follow-through (`docs/sensors.md` defines it and how it is measured).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
+pub struct FollowThrough {
+    /// The stroke it follows ([`LiveStroke::stroke`]).
+    pub stroke: u32,
+    /// Forward travel of the cue from the tip contact until it stopped (m).
+    pub length: f32,
+    /// Time from the tip contact until the cue stopped (s).
+    pub time: f32,
 }
 
 /// An IMU failure, with the sample count when it was seen.

@@ -23,7 +23,9 @@ use std::fmt::Debug;
 use cuesight::{Error as CoreError, Field};
 use cuesight_link::error::{FrameFault, NoAim, SequenceFault, Unsupported};
 use cuesight_link::frame::{self, FrameReader, Received, MAX_FRAME, MAX_RAW};
-use cuesight_link::live::{LiveReport, LiveStroke, SensorFault, StrokeMetrics, TraceEnd};
+use cuesight_link::live::{
+    FollowThrough, LiveReport, LiveStroke, SensorFault, StrokeMetrics, TraceEnd,
+};
 use cuesight_link::names::{EndName, ModelName, RegimeName, ShotMode, TableName};
 use cuesight_link::response::{
     BallAnswer, ImpulsesAnswer, InputEcho, ParamsAnswer, ShutdownAnswer, StrokeProgress, NAME_LEN,
@@ -1166,6 +1168,13 @@ fn live_reports() -> BoxedStrategy<LiveReport> {
                 truncated,
                 work_instructions: work,
                 work_max_instructions: max,
+            })
+        }),
+        1 => (u32s(), f32s(), f32s()).prop_map(|(stroke, length, time)| {
+            LiveReport::FollowThrough(FollowThrough {
+                stroke,
+                length,
+                time,
             })
         }),
     ]

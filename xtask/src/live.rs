@@ -14,8 +14,9 @@
 //! JSON) played at the stroke's speed, the `shot` answer's keys, or `null` without a
 //! plan). `--stall FROM:COUNT` and `--bus-fail FROM:COUNT` make the emulated part stall
 //! or its bus fail for those samples. A fault is a line `{"fault":{...}}`, a sensor
-//! failure `{"sensor":{...}}`; the
-//! last line is the summary `{"summary":{...}}`. Everything else (the QEMU command,
+//! failure `{"sensor":{...}}`, a stroke's follow-through, once the cue has stopped,
+//! `{"follow_through":{"stroke":0,"length_m":0.21,"time_s":0.24}}`; the last line is
+//! the summary `{"summary":{...}}`. Everything else (the QEMU command,
 //! the firmware's log) goes to stderr.
 
 use std::io::{self, Write};
@@ -231,6 +232,12 @@ pub fn run(args: &Args) -> Result {
                 write(json!({ "sensor": fault }))?;
             }
             LiveReport::TraceEnd(trace_end) => end = Some(trace_end),
+            LiveReport::FollowThrough(follow) => write(json!({ "follow_through": {
+                // 0-based, as the stroke lines count.
+                "stroke": follow.stroke.saturating_sub(1),
+                "length_m": follow.length,
+                "time_s": follow.time,
+            }}))?,
         }
     }
     write(summary_line(end, strokes, faults))?;

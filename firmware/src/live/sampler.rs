@@ -44,7 +44,12 @@ impl Sampler {
             .init()
             .map_err(StartError::Imu)?;
         let estimator =
-            StreamingEstimator::new(&StreamConfig::new(rate_hz)).map_err(StartError::Rate)?;
+            StreamingEstimator::new(&StreamConfig {
+                // Each reported stroke's follow-through, once the cue is still again.
+                follow_through: true,
+                ..StreamConfig::new(rate_hz)
+            })
+            .map_err(StartError::Rate)?;
         *slot = Some(Self {
             part,
             estimator,

@@ -62,6 +62,11 @@ fn live_summary(f: &mut fmt::Formatter<'_>, report: &LiveReport) -> fmt::Result 
         }
         LiveReport::Fault(fault) => write!(f, "live: an impact that is no stroke: {fault:?}"),
         LiveReport::Sensor(fault) => write!(f, "live: IMU fault: {fault:?}"),
+        LiveReport::FollowThrough(follow) => write!(
+            f,
+            "live stroke {}: follow-through {:.3} m in {:.3} s",
+            follow.stroke, follow.length, follow.time
+        ),
         LiveReport::TraceEnd(end) => {
             write!(
             f,
