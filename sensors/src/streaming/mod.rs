@@ -60,6 +60,7 @@
 
 mod config;
 mod event;
+mod impact;
 mod integral;
 mod phases;
 mod rest;
