@@ -25,7 +25,7 @@ pub(super) struct Stroke {
     pub(super) bias: f32,
     bias_round: i32,
     bias_fraction: f32,
-    gyro_bias: f32,
+    pub(super) gyro_bias: f32,
     /// Rest noise (m/s²).
     pub(super) noise: f32,
     /// A sample below `bias − impact_threshold` is an impact: a count `a` is when
@@ -107,6 +107,8 @@ impl StreamingEstimator {
         // A later rest replacing the origin of a stroke in progress (the address after a
         // settling move, or a long pause at the back): the phases decide at the impact.
         let reanchor = self.stroke.active;
+        // The cue moves again: a follow-through not found still by now is given up.
+        self.follow.span = 0;
         // Field by field: a struct literal is built on the stack and copied.
         let s = &mut self.stroke;
         s.active = true;

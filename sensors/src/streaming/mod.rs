@@ -60,6 +60,7 @@
 
 mod config;
 mod event;
+mod follow;
 mod impact;
 mod integral;
 mod phases;
@@ -73,6 +74,7 @@ pub use event::{StreamEvent, StreamFault, StreamStroke};
 pub use wobble::Wobble;
 
 use config::{Plan, RING};
+use follow::Follow;
 use integral::Stroke;
 use rest::{Block, Run};
 
@@ -97,6 +99,8 @@ pub struct StreamingEstimator {
     block: Block,
     run: Run,
     stroke: Stroke,
+    /// The follow-through after the last reported stroke (`follow.rs`).
+    follow: Follow,
     /// Elevation change from the rest (counts·samples) before each of the last 8 samples.
     recent_tilt: [f32; 8],
     /// Latest sample below the impact threshold (dropped at a block end once more than
@@ -137,6 +141,7 @@ impl StreamingEstimator {
             block: Block::new(),
             run: Run::new(),
             stroke: Stroke::new(plan.knock),
+            follow: Follow::new(),
             recent_tilt: [0.0; 8],
             last_crossing: None,
             last_impact: None,
@@ -238,6 +243,11 @@ impl StreamingEstimator {
             .p
             .wrapping_sub(self.prefix(next.wrapping_sub(self.plan.window)));
         self.block_sample(a, w_sum);
+        // The follow-through's sums (`follow.rs`): one comparison when none is measured.
+        let k = n.wrapping_sub(self.follow.from);
+        if k < self.follow.span {
+            self.follow.add(k, a);
+        }
         if (a.wrapping_sub(self.plan.normal)) as u32 >= self.plan.normal_span {
             self.extreme(a, n);
         }
@@ -255,8 +265,8 @@ impl StreamingEstimator {
         if report_non_finite {
             return self.report_non_finite(n);
         }
-        if self.block.pos == self.plan.block {
-            self.end_block(n);
+        if self.block.pos == self.plan.block && self.end_block(n) {
+            return self.report_follow(n);
         }
         None
     }
@@ -269,6 +279,7 @@ impl StreamingEstimator {
         self.not_finite = true;
         self.stroke.end(&self.plan);
         self.run.abandon();
+        self.follow.span = 0;
         self.block.bad = true;
         first
     }
@@ -291,6 +302,10 @@ impl StreamingEstimator {
         if a >= self.plan.rail || a <= -self.plan.rail {
             self.block.bad = true;
             self.last_saturated = Some(n);
+            // After the contact window: the follow-through's sums are unknown.
+            if n.wrapping_sub(self.follow.from) < self.follow.span {
+                self.follow.span = 0;
+            }
             if self.stroke.active && self.stroke.first_saturated.is_none() {
                 self.stroke.first_saturated = Some(n);
             }

@@ -185,9 +185,9 @@ impl StreamingEstimator {
     }
 
     /// Block end at sample `n` (its last): fold the stroke sums, test the block, extend
-    /// or end the run.
+    /// or end the run, mark the follow-through; `true` if that found its stop.
     #[inline(never)]
-    pub(super) fn end_block(&mut self, n: u32) {
+    pub(super) fn end_block(&mut self, n: u32) -> bool {
         self.fold(n);
         self.expire(n);
         let plan = &self.plan;
@@ -244,6 +244,7 @@ impl StreamingEstimator {
         b.bad = false;
         // (`first` is set by the block's first sample, `guard_mark` by its sample at
         // `guard_pos`, before either is read.)
+        self.follow.span != 0 && self.follow_block(n)
     }
 
     /// Drop the markers that can no longer matter at block end `n`, before a `u32`
@@ -275,6 +276,16 @@ impl StreamingEstimator {
 }
 
 impl Run {
+    /// The first sample of the run's first block.
+    pub fn first_block(&self) -> u32 {
+        self.lead.0
+    }
+
+    /// The mean of the run's first block (counts).
+    pub fn first_level(&self) -> f32 {
+        self.level0
+    }
+
     /// The rest window's start and its prefix sums: the run's first block joins it when
     /// the window has not moved on (runs under two buckets) and every `W`-sum inside
     /// that block lies within the motion threshold of the final level — the windowed

@@ -97,6 +97,15 @@ fn shifted(event: StreamEvent, offset: u64) -> StreamEvent {
             s.backswing_start -= offset;
             StreamEvent::Stroke(s)
         }
+        StreamEvent::FollowThrough {
+            impact,
+            length,
+            time,
+        } => StreamEvent::FollowThrough {
+            impact: impact - offset,
+            length,
+            time,
+        },
         StreamEvent::Fault(f) => StreamEvent::Fault(match f {
             StreamFault::NotAtRest { index } => StreamFault::NotAtRest {
                 index: index - offset,
