@@ -7,6 +7,7 @@
 //!
 //! Truth per stroke: the travel from the model's contact instant until it stops, and the
 //! time from that instant until it is slower than 0.02 m/s (the metric's threshold).
+#![cfg(feature = "follow-through")]
 
 #[path = "common/kinematic.rs"]
 mod kinematic;
@@ -250,4 +251,70 @@ fn a_knock_during_the_follow_through_gives_none() {
 #[test]
 fn the_event_keeps_its_size() {
     assert_eq!(std::mem::size_of::<StreamEvent>(), 80);
+}
+
+/// The acceptance streams with the cue's elevation changing by `degrees` (butt up
+/// positive; down again over the next stroke's) evenly over each follow-through, from
+/// the contact to the model's stop, held after it: the pitch rate the gyro sees and the gravity the accelerometer sees
+/// (`−g cos θ Δθ` along the cue, to first order). The model itself holds the elevation
+/// after the contact. Returns the length errors (m).
+fn with_pitch_change(degrees: f64) -> Vec<f64> {
+    let lsb = f64::from(kinematic::SCALES.0);
+    let gyro_lsb = f64::from(kinematic::SCALES.1);
+    let mut errors = Vec::new();
+    for (noise_mg, seed) in [(3.0, 0x5712_0003u64), (8.0, 0x5712_0008)] {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        for _ in 0..6 {
+            let strokes: Vec<_> = (0..10)
+                .map(|_| kinematic::acceptance_stroke(&mut rng))
+                .collect();
+            let noise = noise_mg * 1e-3 * kinematic::G;
+            let (mut accel, mut pitch, truth) = kinematic::stream(&strokes, FS, noise, &mut rng);
+            for (i, t) in truth.iter().enumerate() {
+                // Up and down in turn: the elevation returns after every second stroke.
+                let change = if i % 2 == 0 { 1.0 } else { -1.0 } * degrees.to_radians();
+                let s = &t.stroke;
+                let elevation = s.tilt(s.times()[4]);
+                let start = t.contact;
+                let span = ((s.contact + s.follow) * FS) as usize;
+                for k in start..accel.len() {
+                    let done = ((k - start) as f64 + 0.5).min(span as f64) / span as f64;
+                    let gravity = -kinematic::G * elevation.cos() * change * done;
+                    accel[k] = (f64::from(accel[k]) + gravity / lsb).round() as i16;
+                    if k < start + span {
+                        let rate = change / (span as f64 / FS);
+                        pitch[k] = (f64::from(pitch[k]) + rate / gyro_lsb).round() as i16;
+                    }
+                }
+            }
+            let (_, found) = follow_throughs(&accel, &pitch);
+            for (f, t) in found.iter().zip(&truth) {
+                errors.push(error(*f, t).0);
+            }
+        }
+    }
+    errors
+}
+
+/// A pitch change during the follow-through (which the model itself does not make):
+/// the level is corrected by the gyro's elevation change from the onset to the stop,
+/// taken as linear in time (`follow.rs`). Without that correction, 2° gave 19.4 mm at
+/// worst (11.7 mm RMS; `g Δθ T²/3` is 7 mm for 2° over 0.25 s). The rest is the
+/// linear assumption's: the change here ends at the stop, 50–75 ms before the last
+/// sample summed. Asserted: within 2.5 mm + 1.5 mm per degree.
+#[test]
+fn a_pitch_change_during_the_follow_through() {
+    for degrees in [-2.0f64, 1.0, 2.0] {
+        let errors = with_pitch_change(degrees);
+        let max = errors.iter().fold(0.0f64, |m, e| m.max(e.abs()));
+        let rms = (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt();
+        println!(
+            "pitch change {degrees}° over the follow-through: {} found, length error max {:.2} mm, RMS {:.2} mm",
+            errors.len(),
+            1e3 * max,
+            1e3 * rms
+        );
+        assert_eq!(errors.len(), 120);
+        assert!(max <= 0.0025 + 0.0015 * degrees.abs(), "{max} m");
+    }
 }

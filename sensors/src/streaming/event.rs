@@ -17,10 +17,12 @@ pub enum StreamEvent {
     /// An impact that is not a measurable stroke, or a bad input.
     Fault(StreamFault),
     /// A reported stroke's follow-through (`docs/sensors.md` §11), reported once the cue
-    /// is still again: on the last sample of the second still 25 ms block after the
-    /// stop, 50–75 ms after it. Only with [`super::StreamConfig::follow_through`]; none
+    /// is still again: on the sample after the second still 25 ms block after the stop,
+    /// 50–75 ms after it. Only with [`super::StreamConfig::follow_through`]; none
     /// when the measurement is given up (no stop within 1.5 s of the contact, a
     /// full-scale sample after the contact's first 8 ms, a new impact, a new stroke).
+    /// Only with the crate's `follow-through` feature.
+    #[cfg(feature = "follow-through")]
     FollowThrough {
         /// The stroke's [`StreamStroke::impact_index`].
         impact: u64,

@@ -32,20 +32,29 @@
 //! length = (v_c · skip − Σ_{i=c}^{e} (i − c)(a_i − L)) · scale · Δt²
 //! ```
 //!
-//! The stop: a run of two still, level rest blocks (`rest.rs`) whose first block starts
-//! after `c`; `e` is the end of its second block. The time ends where `v` falls below
-//! `slow` (0.02 m/s, the pause's threshold: a cue creeping to a stop has no sharper end):
-//! `v = u_b − u_e` at each block boundary `b`, `u_b = Σ_{[c, b)} (a − L)` being kept for
-//! the last [`MARKS`] boundaries, linearly interpolated between the two boundaries around
-//! it.
+//! The pitch changes during a follow-through: the level is taken as `L + λ (i − c)`,
+//! `λ` from the gyro's elevation change between the onset and `e` (linear in time),
+//! which removes `λ Σ (i − c) = λ m(m−1)/2` from the velocity sum and
+//! `λ Σ (i − c)² = λ m(m−1)(2m−1)/6` from the moment.
 //!
-//! Given up, with no report: no stop within [`BOUND`] of the onset, a full-scale sample
-//! after the contact window, a new impact (a double hit, a knock), a rest end (a new
+//! The stop: a run of two still rest blocks (`rest.rs`) whose first block starts after
+//! `c`, at the level of a still cue (the bias less the gyro tilt correction there), the
+//! velocity integrated back leaving the cue at least [`MIN_KEPT`] of its speed; `e` is
+//! the end of its second block, and the report is on the next sample. The time ends
+//! where `v` falls below `slow` (0.02 m/s, the pause's threshold: a cue creeping to a
+//! stop has no sharper end): `v = u_b − u_e` at each block boundary `b`, `u_b =
+//! Σ_{[c, b)} (a − L)` being kept for the last [`MARKS`] boundaries, linearly
+//! interpolated between the two boundaries around it.
+//!
+//! Given up, with no report (tested at block ends): no stop within [`BOUND`] of the
+//! onset, a full-scale sample after the contact window, a crossing of the impact
+//! threshold after it (a double hit, a knock; `expire` in `rest.rs`), a rest end (a new
 //! stroke starts), a non-finite sample, [`super::StreamingEstimator::finish`].
 //!
 //! Per sample, while measuring: one `i32` add and one 32×32→64 multiply-accumulate; one
-//! unsigned comparison otherwise. Per block end: one mark. At the report: one loop of at
-//! most [`MARKS`] steps and one division.
+//! unsigned comparison otherwise (after the impact test: an impact's sample skips it).
+//! Per block end: one mark, and a division at a candidate stop. At the report: one loop
+//! of at most [`MARKS`] steps and one division.
 
 use super::{at_or_after, StreamEvent, StreamingEstimator};
 
@@ -84,9 +93,8 @@ pub(super) struct Follow {
     s1: i64,
     /// The stroke's impact onset.
     onset: u32,
-    /// The level `L`, as its nearest integer and the difference.
-    level_round: i32,
-    level_fraction: f32,
+    /// The level `L` (counts).
+    level: f32,
     /// The elevation change from the rest to the onset (counts·samples, `integral.rs`)
     /// and the pitch-rate prefix sum before the onset: the elevation change at a later
     /// sample, for the still level there.
@@ -94,11 +102,18 @@ pub(super) struct Follow {
     pitch_prefix: i32,
     /// [`MIN_KEPT`] of the stroke's speed (velocity counts).
     kept: f32,
-    /// `u_b = Σ_{[from, b)} (a − L)` at the last [`MARKS`] block boundaries `b`, the
-    /// newest at `last`; `taken` counts the boundaries since `from`.
+    /// The level's change per sample over the sums (counts), from the gyro's elevation
+    /// change between the onset and the last block end, taken as linear in time.
+    drift: f32,
+    /// `u_b = Σ_{[from, b)} (a − L)` at the last [`MARKS`] block boundaries `b`;
+    /// `taken` counts the boundaries since `from`.
     marks: [f32; MARKS],
-    last: u32,
     taken: u32,
+    /// The stop was found at the block end `count` samples from `from`: the report is
+    /// on the next sample (`from` and `span` then select just that one), so that the
+    /// block end and the report, the two costliest steps here, share no sample.
+    pub ready: bool,
+    count: u32,
 }
 
 impl Follow {
@@ -110,14 +125,15 @@ impl Follow {
             s0: 0,
             s1: 0,
             onset: 0,
-            level_round: 0,
-            level_fraction: 0.0,
+            level: 0.0,
             tilt: 0.0,
             pitch_prefix: 0,
             kept: 0.0,
+            drift: 0.0,
             marks: [0.0; MARKS],
-            last: 0,
             taken: 0,
+            ready: false,
+            count: 0,
         }
     }
 
@@ -128,12 +144,23 @@ impl Follow {
         self.s1 = self.s1.wrapping_add(i64::from(k as i32) * i64::from(a));
     }
 
+    /// `L` as its nearest integer and the difference (the sums less the integer part
+    /// stay exact).
+    fn level_parts(&self) -> (i32, f32) {
+        let level = self.level;
+        let round = if level >= 0.0 {
+            level + 0.5
+        } else {
+            level - 0.5
+        } as i32;
+        (round, level - round as f32)
+    }
+
     /// `Σ (a − L)` over the first `count` samples, `S0` holding exactly those.
     fn change(&self, count: u32) -> f32 {
-        let whole = self
-            .s0
-            .wrapping_sub(self.level_round.wrapping_mul(count as i32));
-        whole as f32 - self.level_fraction * count as f32
+        let (round, fraction) = self.level_parts();
+        let whole = self.s0.wrapping_sub(round.wrapping_mul(count as i32));
+        whole as f32 - fraction * count as f32
     }
 
     /// Samples from `from` to where `v = u − u_e` falls below `slow` (`change` = `u_e`):
@@ -142,12 +169,14 @@ impl Follow {
     fn stop(&self, change: f32, slow: f32, block: u32) -> f32 {
         let kept = self.taken.min(MARKS as u32);
         // The newest boundary is the sample after `e`: `v = 0` there.
-        let mut newer = (self.last.wrapping_sub(self.from) as f32, 0.0);
+        let mut newer = (self.count as f32, 0.0);
         let mut j = 1;
         loop {
             let older = if j < kept {
                 let u = self.marks[self.taken.wrapping_sub(1 + j) as usize % MARKS];
-                (newer.0 - block as f32, u - change)
+                let at = newer.0 - block as f32;
+                // The drift's part of `u` at `at` samples from `from`.
+                (at, u - self.drift * at * (at - 1.0) * 0.5 - change)
             } else if self.taken <= MARKS as u32 {
                 (0.0, -change)
             } else {
@@ -170,15 +199,12 @@ impl StreamingEstimator {
     /// `tilt` counts·samples since the rest, at `speed` m/s: measure its follow-through.
     /// Its level is the bias less the tilt correction at the onset (as the phases' level,
     /// `integral.rs`).
+    /// (Out of line: the impact's sample is the costliest.)
+    #[inline(never)]
     pub(super) fn start_follow(&mut self, onset: u32, tilt: f32, speed: f32) {
         let level = self.stroke.bias - self.tilt_gain * tilt;
         // `plan.slow` is `REST_SPEED` in velocity counts.
         let kept = speed * self.plan.slow * (MIN_KEPT / super::integral::REST_SPEED);
-        let round = if level >= 0.0 {
-            level + 0.5
-        } else {
-            level - 0.5
-        } as i32;
         let pitch_prefix = self.ring[onset as usize & super::MASK][1];
         let f = &mut self.follow;
         f.tilt = tilt;
@@ -189,58 +215,73 @@ impl StreamingEstimator {
         f.s0 = 0;
         f.s1 = 0;
         f.onset = onset;
-        f.level_round = round;
-        f.level_fraction = level - round as f32;
+        f.level = level;
         f.taken = 0;
+        f.ready = false;
     }
 
-    /// Block end at sample `n` while measuring: a mark, and `true` if the cue is still:
-    /// a run of two still, level blocks starting after the contact window, at the level
+    /// Block end at sample `n` while measuring: a mark, and the report set up for the
+    /// next sample if the cue is still: a run of two still, level blocks starting after
+    /// the contact window, at the level
     /// of a still cue (the bias less the tilt correction at `n`, within the rest level
     /// tolerance: a run of blocks at a steady deceleration is not a stop), the velocity
     /// integrated back from it leaving the cue at least [`MIN_KEPT`] of its speed after
     /// the contact.
-    pub(super) fn follow_block(&mut self, n: u32) -> bool {
+    #[inline(never)]
+    pub(super) fn follow_block(&mut self, n: u32) {
         let next = n.wrapping_add(1);
         let s = &self.stroke;
         let f = &mut self.follow;
         let count = next.wrapping_sub(f.from);
         if count as i32 <= 0 {
-            return false; // still in the contact window
+            return; // still in the contact window
         }
-        if count > f.span {
-            f.span = 0; // no stop within the bound
-            return false;
+        // Given up: no stop within the bound, a rest has ended since (a new stroke), a
+        // full-scale sample after the contact window (`last_saturated` is kept longer
+        // than a block). A new impact is handled by `expire` (`rest.rs`).
+        if count > f.span || s.active || self.last_saturated.is_some_and(|i| at_or_after(i, f.from))
+        {
+            f.span = 0;
+            return;
         }
         let change = f.change(count);
         f.marks[f.taken as usize % MARKS] = change;
         f.taken = f.taken.wrapping_add(1);
-        f.last = next;
         if !(self.run.armed && at_or_after(self.run.first_block(), f.from) && -change >= f.kept) {
-            return false;
+            return;
         }
         let tilt = f.tilt + self.c.wrapping_sub(f.pitch_prefix) as f32
             - s.gyro_bias * next.wrapping_sub(f.onset) as f32;
         let still = s.bias - self.tilt_gain * tilt;
-        cuesight::math::abs(self.run.first_level() - still) <= self.plan.level_tolerance
+        if cuesight::math::abs(self.run.first_level() - still) <= self.plan.level_tolerance {
+            f.drift = -self.tilt_gain * (tilt - f.tilt) / count as f32;
+            f.count = count;
+            f.ready = true;
+            f.from = next;
+            f.span = 1;
+        }
     }
 
-    /// The end of a step whose sample `n` ends the block where the stop was found: the
-    /// report (module docs), built in the caller's return slot.
+    /// The end of a step on the sample after the block end where the stop was found:
+    /// the report (module docs), built in the caller's return slot.
     #[inline(never)]
-    pub(super) fn report_follow(&mut self, n: u32) -> Option<StreamEvent> {
+    pub(super) fn report_follow(&mut self) -> Option<StreamEvent> {
         let plan = &self.plan;
         let f = &mut self.follow;
         f.span = 0;
-        let count = n.wrapping_add(1).wrapping_sub(f.from);
-        // `u_e`: the velocity at `from` is `−u_e`.
-        let change = f.change(count);
+        f.ready = false;
+        let count = f.count;
         // Σ (i − from)(a_i − L) = S1 − L·m(m−1)/2 (the bound keeps m ≤ 15,000 at 10 kHz:
         // m(m − 1) fits a u32).
         let pairs = count.wrapping_mul(count.wrapping_sub(1)) / 2;
+        let (round, fraction) = f.level_parts();
         let moment =
-            f.s1.wrapping_sub(i64::from(f.level_round) * i64::from(pairs)) as f32
-                - f.level_fraction * pairs as f32;
+            f.s1.wrapping_sub(i64::from(round) * i64::from(pairs)) as f32 - fraction * pairs as f32;
+        // With the level `L + drift·(i − from)`: less `drift Σ (i − from)` and
+        // `drift Σ (i − from)² = drift · m(m−1)/2 · (2m−1)/3`.
+        let pairs = pairs as f32;
+        let change = f.change(count) - f.drift * pairs;
+        let moment = moment - f.drift * pairs * (2.0 * count as f32 - 1.0) * (1.0 / 3.0);
         let skip = plan.follow_skip as f32;
         let travel = -change * skip - moment;
         let stop = f.stop(change, plan.slow, plan.block);

@@ -20,8 +20,6 @@ impl StreamingEstimator {
     /// event last (built in the caller's return slot).
     #[inline(never)]
     pub(super) fn new_impact(&mut self, n: u32) -> Option<StreamEvent> {
-        // A new impact ends a follow-through being measured (a stroke starts its own).
-        self.follow.span = 0;
         let r = if self.stroke.active {
             self.impact(n)
         } else {
@@ -173,6 +171,7 @@ impl StreamingEstimator {
                 ..report
             };
         }
+        #[cfg(feature = "follow-through")]
         self.start_follow(onset, tilt, speed);
         report
     }

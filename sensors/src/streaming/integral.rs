@@ -107,8 +107,6 @@ impl StreamingEstimator {
         // A later rest replacing the origin of a stroke in progress (the address after a
         // settling move, or a long pause at the back): the phases decide at the impact.
         let reanchor = self.stroke.active;
-        // The cue moves again: a follow-through not found still by now is given up.
-        self.follow.span = 0;
         // Field by field: a struct literal is built on the stack and copied.
         let s = &mut self.stroke;
         s.active = true;

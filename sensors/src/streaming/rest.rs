@@ -185,9 +185,9 @@ impl StreamingEstimator {
     }
 
     /// Block end at sample `n` (its last): fold the stroke sums, test the block, extend
-    /// or end the run, mark the follow-through; `true` if that found its stop.
+    /// or end the run, mark the follow-through.
     #[inline(never)]
-    pub(super) fn end_block(&mut self, n: u32) -> bool {
+    pub(super) fn end_block(&mut self, n: u32) {
         self.fold(n);
         self.expire(n);
         let plan = &self.plan;
@@ -244,7 +244,10 @@ impl StreamingEstimator {
         b.bad = false;
         // (`first` is set by the block's first sample, `guard_mark` by its sample at
         // `guard_pos`, before either is read.)
-        self.follow.span != 0 && self.follow_block(n)
+        #[cfg(feature = "follow-through")]
+        if self.follow.span != 0 {
+            self.follow_block(n);
+        }
     }
 
     /// Drop the markers that can no longer matter at block end `n`, before a `u32`
@@ -254,11 +257,16 @@ impl StreamingEstimator {
     /// end, `delay` before a departure).
     fn expire(&mut self, n: u32) {
         let plan = &self.plan;
-        if self
-            .last_crossing
-            .is_some_and(|last| n.wrapping_sub(last) > plan.gap)
-        {
-            self.last_crossing = None;
+        if let Some(last) = self.last_crossing {
+            // A crossing after a follow-through's contact window is a new impact (a
+            // double hit, a knock): that measurement is given up (`follow.rs`).
+            #[cfg(feature = "follow-through")]
+            if at_or_after(last, self.follow.from) {
+                self.follow.span = 0;
+            }
+            if n.wrapping_sub(last) > plan.gap {
+                self.last_crossing = None;
+            }
         }
         if self
             .last_impact
@@ -277,11 +285,13 @@ impl StreamingEstimator {
 
 impl Run {
     /// The first sample of the run's first block.
+    #[cfg(feature = "follow-through")]
     pub fn first_block(&self) -> u32 {
         self.lead.0
     }
 
     /// The mean of the run's first block (counts).
+    #[cfg(feature = "follow-through")]
     pub fn first_level(&self) -> f32 {
         self.level0
     }

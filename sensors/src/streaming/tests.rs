@@ -97,6 +97,7 @@ fn shifted(event: StreamEvent, offset: u64) -> StreamEvent {
             s.backswing_start -= offset;
             StreamEvent::Stroke(s)
         }
+        #[cfg(feature = "follow-through")]
         StreamEvent::FollowThrough {
             impact,
             length,
