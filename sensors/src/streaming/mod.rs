@@ -2,7 +2,7 @@
 //!
 //! The windowed estimator ([`crate::stroke`]) needs the whole stroke in a buffer (3.6 s,
 //! 48 kB at 6.66 kHz). This one keeps block statistics, prefix sums and a 128-sample
-//! ring of them ([`StreamingEstimator`] is 1,528 bytes, 1,616 with the follow-through),
+//! ring of them ([`StreamingEstimator`] is 1,528 bytes, 1,624 with the follow-through),
 //! and reports each stroke on the sample that crosses the impact threshold. The steps
 //! are the windowed estimator's (`stroke.rs` module docs, `docs/sensors.md` §4),
 //! rearranged so that each is decided when its last sample arrives:
