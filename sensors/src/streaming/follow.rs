@@ -137,7 +137,7 @@ impl Follow {
         }
     }
 
-    /// Sample `from + k` of `a` counts (`k < span` ≤ 60 s of samples: `k·a` fits an i32).
+    /// Sample `from + k` of `a` counts (`k < span`, at most 15,000: 1.5 s at 10 kHz).
     #[inline(always)]
     pub fn add(&mut self, k: u32, a: i32) {
         self.s0 = self.s0.wrapping_add(a);
