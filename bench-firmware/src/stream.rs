@@ -111,8 +111,8 @@ pub fn bench_stream_timed(
 /// Every sample of `stream` through `push`, in order, with a `stream-mark <index>
 /// <what>` line where something observable happened: `rest-end` (a stroke starts
 /// integrating), `re-anchor` (a later rest replaces its origin), `stroke-end` (it stops
-/// without an event: `max_stroke`), or the event (`stroke`, `double-hit`,
-/// `not-at-rest`, `not-forward`, `saturated`, `not-finite`).
+/// without an event: `max_stroke`), or the event (`stroke`, `follow-through`,
+/// `double-hit`, `not-at-rest`, `not-forward`, `saturated`, `not-finite`).
 #[allow(unsafe_code)] // `no_mangle`
 #[no_mangle]
 #[inline(never)]
@@ -143,6 +143,7 @@ pub fn bench_stream_loop(
 fn name(event: &StreamEvent) -> &'static str {
     match event {
         StreamEvent::Stroke(_) => "stroke",
+        StreamEvent::FollowThrough { .. } => "follow-through",
         StreamEvent::Fault(fault) => match fault {
             StreamFault::NotAtRest { .. } => "not-at-rest",
             StreamFault::DoubleHit { .. } => "double-hit",

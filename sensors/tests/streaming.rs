@@ -44,7 +44,7 @@ fn strokes_of(events: &[StreamEvent]) -> Vec<StreamStroke> {
         .iter()
         .filter_map(|e| match e {
             StreamEvent::Stroke(s) => Some(*s),
-            StreamEvent::Fault(_) => None,
+            _ => None,
         })
         .collect()
 }

@@ -59,7 +59,11 @@ fn main() -> ! {
             "no sample stream baked into this image: build it through `cargo xtask bench`"
         ));
     };
-    let config = black_box(StreamConfig::new(stream.rate_hz));
+    // With the follow-through (off by default): its cost is counted too.
+    let config = black_box(StreamConfig {
+        follow_through: true,
+        ..StreamConfig::new(stream.rate_hz)
+    });
     let Ok(fresh) = bench_stream_new(&config) else {
         exit::fail(format_args!("the stream's rate is not accepted"));
     };

@@ -45,6 +45,12 @@ pub struct StreamConfig {
     /// Slowest cue speed reported as a stroke (m/s); a slower or backward integral is
     /// [`super::StreamFault::NotForward`]. Default 0.05 m/s.
     pub min_speed: f32,
+    /// Measure each stroke's follow-through and report it as
+    /// [`super::StreamEvent::FollowThrough`] once the cue is still again (`follow.rs`).
+    /// Default `false`: a consumer that does not handle the event gets exactly the
+    /// events it got before. Only with the crate's `follow-through` feature.
+    #[cfg(feature = "follow-through")]
+    pub follow_through: bool,
 }
 
 impl StreamConfig {
@@ -58,6 +64,8 @@ impl StreamConfig {
             max_stroke: 10.0,
             double_hit_window: 0.1,
             min_speed: 0.05,
+            #[cfg(feature = "follow-through")]
+            follow_through: false,
         }
     }
 }
@@ -162,6 +170,13 @@ pub(crate) struct Plan {
     /// The stroke metrics' pause threshold, `REST_SPEED` in velocity counts
     /// (counts·samples: times `scale · dt` it is m/s).
     pub slow: f32,
+    /// Follow-through (`follow.rs`): the contact window left out of its sums (samples
+    /// from the onset), and how many samples after that window its sums may run before
+    /// it is given up (0: not measured).
+    #[cfg(feature = "follow-through")]
+    pub follow_skip: u32,
+    #[cfg(feature = "follow-through")]
+    pub follow_span: u32,
 }
 
 /// `round(seconds · rate)`, at least `at_least` (casts saturate; inputs are bounded).
@@ -302,6 +317,14 @@ impl Plan {
             min_speed: config.min_speed,
             elevation: s.cue_elevation,
             slow: super::integral::REST_SPEED * rate / scale,
+            #[cfg(feature = "follow-through")]
+            follow_skip: samples(super::follow::SKIP, rate, 1),
+            #[cfg(feature = "follow-through")]
+            follow_span: if config.follow_through {
+                samples(super::follow::BOUND - super::follow::SKIP, rate, 1)
+            } else {
+                0
+            },
         })
     }
 }

@@ -16,6 +16,21 @@ pub enum StreamEvent {
     Stroke(StreamStroke),
     /// An impact that is not a measurable stroke, or a bad input.
     Fault(StreamFault),
+    /// A reported stroke's follow-through (`docs/sensors.md` §11), reported once the cue
+    /// is still again: on the sample after the second still 25 ms block after the stop,
+    /// 50–75 ms after it. Only with [`super::StreamConfig::follow_through`]; none
+    /// when the measurement is given up (no stop within 1.5 s of the contact, a
+    /// full-scale sample after the contact's first 8 ms, a new impact, a new stroke).
+    /// Only with the crate's `follow-through` feature.
+    #[cfg(feature = "follow-through")]
+    FollowThrough {
+        /// The stroke's [`StreamStroke::impact_index`].
+        impact: u64,
+        /// How far the cue went forward from the tip contact until it stopped (m).
+        length: f32,
+        /// From the tip contact until the cue was slower than 0.02 m/s (s).
+        time: f32,
+    },
 }
 
 /// A detected stroke (the windowed [`crate::StrokeEstimate`]'s fields, with stream

@@ -2,10 +2,10 @@
 //!
 //! The windowed estimator ([`crate::stroke`]) needs the whole stroke in a buffer (3.6 s,
 //! 48 kB at 6.66 kHz). This one keeps block statistics, prefix sums and a 128-sample
-//! ring of them ([`StreamingEstimator`] is 1,528 bytes), and reports each stroke on the
-//! sample that crosses the impact threshold. The steps are the windowed estimator's
-//! (`stroke.rs` module docs, `docs/sensors.md` §4), rearranged so that each is decided
-//! when its last sample arrives:
+//! ring of them ([`StreamingEstimator`] is 1,528 bytes, 1,624 with the follow-through),
+//! and reports each stroke on the sample that crosses the impact threshold. The steps
+//! are the windowed estimator's (`stroke.rs` module docs, `docs/sensors.md` §4),
+//! rearranged so that each is decided when its last sample arrives:
 //!
 //! 1. **Rest** (`rest.rs`): 25 ms blocks; a run of blocks whose standard deviation is
 //!    at most `rest_noise_limit` and whose means lie within `rest_level_tolerance` of
@@ -34,6 +34,12 @@
 //!    the mean of the 8 samples ending 4 before the crossing; samples from the onset on
 //!    are left out of the integral. Crossings less than 5 ms apart are one impact (its
 //!    ringing); a new one within `double_hit_window` is a double hit.
+//! 7. **Follow-through** (`follow.rs`, the `follow-through` feature, with
+//!    `StreamConfig::follow_through`): after a stroke's report, from 8 ms after its
+//!    onset, exact sums `Σ a` and `Σ (i − c) a` until a rest shows the cue still; the
+//!    velocity is integrated back from `v = 0` there (the contact is clipped at full
+//!    scale), and `StreamEvent::FollowThrough` reported on the sample after that
+//!    block end.
 //!
 //! Everything is per sample O(1): integer adds, a dozen f32 operations, no division,
 //! no square root, no trigonometry, no loop; each block end (every 25 ms) adds a few
@@ -60,6 +66,9 @@
 
 mod config;
 mod event;
+#[cfg(feature = "follow-through")]
+mod follow;
+mod impact;
 mod integral;
 mod phases;
 mod rest;
@@ -72,6 +81,8 @@ pub use event::{StreamEvent, StreamFault, StreamStroke};
 pub use wobble::Wobble;
 
 use config::{Plan, RING};
+#[cfg(feature = "follow-through")]
+use follow::Follow;
 use integral::Stroke;
 use rest::{Block, Run};
 
@@ -96,6 +107,9 @@ pub struct StreamingEstimator {
     block: Block,
     run: Run,
     stroke: Stroke,
+    /// The follow-through after the last reported stroke (`follow.rs`).
+    #[cfg(feature = "follow-through")]
+    follow: Follow,
     /// Elevation change from the rest (counts·samples) before each of the last 8 samples.
     recent_tilt: [f32; 8],
     /// Latest sample below the impact threshold (dropped at a block end once more than
@@ -136,6 +150,8 @@ impl StreamingEstimator {
             block: Block::new(),
             run: Run::new(),
             stroke: Stroke::new(plan.knock),
+            #[cfg(feature = "follow-through")]
+            follow: Follow::new(),
             recent_tilt: [0.0; 8],
             last_crossing: None,
             last_impact: None,
@@ -254,6 +270,19 @@ impl StreamingEstimator {
         if report_non_finite {
             return self.report_non_finite(n);
         }
+        // The follow-through's sums (`follow.rs`): one comparison when none is measured.
+        // After the impact and non-finite reports: each ends a measurement, and the
+        // costliest samples (impacts) do not pay for it.
+        #[cfg(feature = "follow-through")]
+        {
+            let k = n.wrapping_sub(self.follow.from);
+            if k < self.follow.span {
+                if self.follow.ready {
+                    return self.report_follow();
+                }
+                self.follow.add(k, a);
+            }
+        }
         if self.block.pos == self.plan.block {
             self.end_block(n);
         }
@@ -268,6 +297,10 @@ impl StreamingEstimator {
         self.not_finite = true;
         self.stroke.end(&self.plan);
         self.run.abandon();
+        #[cfg(feature = "follow-through")]
+        {
+            self.follow.span = 0;
+        }
         self.block.bad = true;
         first
     }

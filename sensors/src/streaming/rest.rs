@@ -185,7 +185,7 @@ impl StreamingEstimator {
     }
 
     /// Block end at sample `n` (its last): fold the stroke sums, test the block, extend
-    /// or end the run.
+    /// or end the run, mark the follow-through.
     #[inline(never)]
     pub(super) fn end_block(&mut self, n: u32) {
         self.fold(n);
@@ -244,6 +244,10 @@ impl StreamingEstimator {
         b.bad = false;
         // (`first` is set by the block's first sample, `guard_mark` by its sample at
         // `guard_pos`, before either is read.)
+        #[cfg(feature = "follow-through")]
+        if self.follow.span != 0 {
+            self.follow_block(n);
+        }
     }
 
     /// Drop the markers that can no longer matter at block end `n`, before a `u32`
@@ -253,11 +257,16 @@ impl StreamingEstimator {
     /// end, `delay` before a departure).
     fn expire(&mut self, n: u32) {
         let plan = &self.plan;
-        if self
-            .last_crossing
-            .is_some_and(|last| n.wrapping_sub(last) > plan.gap)
-        {
-            self.last_crossing = None;
+        if let Some(last) = self.last_crossing {
+            // A crossing after a follow-through's contact window is a new impact (a
+            // double hit, a knock): that measurement is given up (`follow.rs`).
+            #[cfg(feature = "follow-through")]
+            if at_or_after(last, self.follow.from) {
+                self.follow.span = 0;
+            }
+            if n.wrapping_sub(last) > plan.gap {
+                self.last_crossing = None;
+            }
         }
         if self
             .last_impact
@@ -275,6 +284,18 @@ impl StreamingEstimator {
 }
 
 impl Run {
+    /// The first sample of the run's first block.
+    #[cfg(feature = "follow-through")]
+    pub fn first_block(&self) -> u32 {
+        self.lead.0
+    }
+
+    /// The mean of the run's first block (counts).
+    #[cfg(feature = "follow-through")]
+    pub fn first_level(&self) -> f32 {
+        self.level0
+    }
+
     /// The rest window's start and its prefix sums: the run's first block joins it when
     /// the window has not moved on (runs under two buckets) and every `W`-sum inside
     /// that block lies within the motion threshold of the final level — the windowed

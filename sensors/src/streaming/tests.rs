@@ -97,6 +97,16 @@ fn shifted(event: StreamEvent, offset: u64) -> StreamEvent {
             s.backswing_start -= offset;
             StreamEvent::Stroke(s)
         }
+        #[cfg(feature = "follow-through")]
+        StreamEvent::FollowThrough {
+            impact,
+            length,
+            time,
+        } => StreamEvent::FollowThrough {
+            impact: impact - offset,
+            length,
+            time,
+        },
         StreamEvent::Fault(f) => StreamEvent::Fault(match f {
             StreamFault::NotAtRest { index } => StreamFault::NotAtRest {
                 index: index - offset,

@@ -286,6 +286,31 @@ impl Stroke {
     pub fn end_of_follow_through(&self) -> f64 {
         self.times()[4] + self.contact + self.follow
     }
+
+    /// How far the cue travels from the contact instant until it stops (m), from the
+    /// model's motion in [`Self::acceleration`]: through the contact a half-sine
+    /// deceleration from `speed` to `after = speed − delta_v` (mean velocity
+    /// `(speed + after)/2`), then a half-sine deceleration from `after` to 0 over `follow`
+    /// (mean velocity `after/2`). The ringing is taken as the tip's vibration, not as
+    /// travel: its net velocity, `A ω / (ω² + τ⁻²)` ≈ 0.02–0.09 m/s for the model's
+    /// amplitudes `A` and frequencies `ω` (`τ` = 3 ms), would otherwise never stop the cue.
+    pub fn follow_through_length(&self) -> f64 {
+        let after = self.speed - self.delta_v;
+        0.5 * (self.speed + after) * self.contact + 0.5 * after * self.follow
+    }
+
+    /// Time from the contact instant until the cue is slower than `slow` (m/s): after the
+    /// contact `v(u) = after (1 + cos(π u / follow)) / 2`, so `u = follow/π · acos(2 slow /
+    /// after − 1)`.
+    pub fn follow_through_time(&self, slow: f64) -> f64 {
+        let after = self.speed - self.delta_v;
+        let u = if after > slow {
+            self.follow / std::f64::consts::PI * (2.0 * slow / after - 1.0).acos()
+        } else {
+            0.0
+        };
+        self.contact + u
+    }
 }
 
 /// One stroke of a continuous stream, with the truth.

@@ -397,16 +397,19 @@ fn parse_trace(log: impl std::io::BufRead) -> Result<(Trace, Vec<String>)> {
 /// the event on it (`impact: stroke`, `impact: not-forward`, …), `rest end` (a stroke
 /// starts integrating), `rest end (re-anchor)` (a later rest replaces its origin),
 /// `block end` (every 25 ms), joined with ` + `; otherwise `integrating` (a stroke is
-/// running) or `idle`.
+/// running) or `idle`. A `follow-through` report (`follow-through decided`) relabels
+/// the `idle` samples and block ends since the stroke before it: `idle, measuring
+/// follow-through`, `block end, measuring follow-through`.
 pub fn causes(rate_hz: f64, samples: usize, marks: &[(usize, String)]) -> Vec<String> {
     // `sensors/src/streaming/config.rs`: `samples(0.025, rate, 8)`, in f32.
     let block = (((0.025f32 * rate_hz as f32) + 0.5) as usize).max(8);
     let marks: BTreeMap<usize, &str> = marks.iter().map(|(i, w)| (*i, w.as_str())).collect();
     let mut integrating = false;
-    (0..samples)
+    let mut causes: Vec<String> = (0..samples)
         .map(|i| {
             let mut parts = Vec::new();
             match marks.get(&i) {
+                Some(&"follow-through") => parts.push("follow-through decided".to_string()),
                 Some(&"rest-end") => parts.push("rest end".to_string()),
                 Some(&"re-anchor") => parts.push("rest end (re-anchor)".to_string()),
                 Some(&"stroke-end") => parts.push("stroke dropped".to_string()),
@@ -428,7 +431,22 @@ pub fn causes(rate_hz: f64, samples: usize, marks: &[(usize, String)]) -> Vec<St
             }
             cause
         })
-        .collect()
+        .collect();
+    let mut stroke = None;
+    for (&i, &what) in &marks {
+        match what {
+            "stroke" => stroke = Some(i),
+            "follow-through" => {
+                for cause in causes.iter_mut().take(i).skip(stroke.map_or(i, |s| s + 1)) {
+                    if cause == "idle" || cause == "block end" {
+                        cause.push_str(", measuring follow-through");
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    causes
 }
 
 /// Functions reachable from each entry point, with their sizes (symbol table).
@@ -675,5 +693,15 @@ Trace 0: 0x1 [0/c/0/0] bench_stream_loop
         assert_eq!(causes[12], "impact: stroke + block end");
         assert_eq!(causes[13], "idle");
         assert_eq!(causes[25], "block end");
+        let marks = [
+            (12, "stroke".to_string()),
+            (26, "follow-through".to_string()),
+        ];
+        let follow = super::causes(500.0, 40, &marks);
+        assert_eq!(follow[13], "idle, measuring follow-through");
+        assert_eq!(follow[25], "block end, measuring follow-through");
+        assert_eq!(follow[26], "follow-through decided");
+        assert_eq!(follow[27], "idle");
+        assert_eq!(follow[38], "block end");
     }
 }
