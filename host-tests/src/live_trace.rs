@@ -127,6 +127,10 @@ impl TraceConfig {
     }
 }
 
+/// The speed below which the cue counts as stopped for the follow-through's time
+/// (m/s): the estimator's (`cuesight_sensors::streaming`, `REST_SPEED`).
+const FOLLOW_SLOW_MPS: f64 = 0.02;
+
 /// The truth of one stroke.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct StrokeTruth {
@@ -154,6 +158,11 @@ pub struct StrokeTruth {
     pub tilt_back_deg: f64,
     /// Cue speed lost in the contact (m/s).
     pub contact_delta_v_mps: f64,
+    /// Follow-through: the cue's travel from the contact until it stops (m), and the
+    /// time until it is slower than 0.02 m/s (s), from the model's motion
+    /// (`kinematic.rs`, `follow_through_length` / `_time`).
+    pub follow_through_m: f64,
+    pub follow_through_s: f64,
     /// Index of the second contact's first sample, for a double hit.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub second_impact_sample: Option<usize>,
@@ -250,6 +259,8 @@ pub fn generate(config: &TraceConfig) -> LiveTrace {
             elevation_deg: s.elevation.to_degrees(),
             tilt_back_deg: s.tilt_back.to_degrees(),
             contact_delta_v_mps: s.delta_v,
+            follow_through_m: s.follow_through_length(),
+            follow_through_s: s.follow_through_time(FOLLOW_SLOW_MPS),
             second_impact_sample: s
                 .second_hit
                 .map(|(delay, _)| start + ((s.times()[4] + delay) * fs) as usize),

@@ -43,8 +43,9 @@
 //! the end of its second block, and the report is on the next sample. The time ends
 //! where `v` falls below `slow` (0.02 m/s, the pause's threshold: a cue creeping to a
 //! stop has no sharper end): `v = u_b − u_e` at each block boundary `b`, `u_b =
-//! Σ_{[c, b)} (a − L)` being kept for the last [`MARKS`] boundaries, linearly
-//! interpolated between the two boundaries around it.
+//! Σ_{[c, b)} (a − L)` being kept for the last [`MARKS`] boundaries, interpolated
+//! linearly in `√v` between the two boundaries around it (a smooth stop has `v ∝ (t_stop
+//! − t)²`).
 //!
 //! Given up, with no report (tested at block ends): no stop within [`BOUND`] of the
 //! onset, a full-scale sample after the contact window, a crossing of the impact
@@ -183,7 +184,14 @@ impl Follow {
                 return newer.0;
             };
             if older.1 >= slow {
-                return older.0 + (newer.0 - older.0) * (older.1 - slow) / (older.1 - newer.1);
+                // Interpolated in √v: a smooth stop (the deceleration easing to zero
+                // with it, as a minimum-jerk move ends) has v ∝ (t_stop − t)², so √v is
+                // linear near it, where v itself bends and a straight line between
+                // boundaries 25 ms apart crosses `slow` late. `older.1 ≥ slow > newer.1`,
+                // so the denominator is positive; a noisy `newer.1` below 0 counts as 0.
+                let root = cuesight::math::sqrt;
+                let (from, to) = (root(older.1), root(cuesight::math::max(newer.1, 0.0)));
+                return older.0 + (newer.0 - older.0) * (from - root(slow)) / (from - to);
             }
             if j >= kept {
                 return 0.0;
