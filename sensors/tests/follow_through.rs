@@ -119,42 +119,34 @@ fn error(found: (u64, f32, f32), t: &Truth) -> (f64, f64) {
 #[test]
 fn follow_through_matches_the_models_motion() {
     let mut all = Errors::default();
-    for (noise_mg, seed) in [(3.0, 0x5712_0003u64), (8.0, 0x5712_0008)] {
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        for _ in 0..6 {
-            let strokes: Vec<_> = (0..10)
-                .map(|_| kinematic::acceptance_stroke(&mut rng))
-                .collect();
-            let noise = noise_mg * 1e-3 * kinematic::G;
-            let (accel, pitch, truth) = kinematic::stream(&strokes, FS, noise, &mut rng);
-            let (events, found) = follow_throughs(&accel, &pitch);
-            assert_eq!(found.len(), truth.len(), "{events:?}");
-            // Stroke, follow-through, stroke, …
-            for pair in events.chunks(2) {
-                let [StreamEvent::Stroke(s), StreamEvent::FollowThrough { impact, .. }] = pair
-                else {
-                    panic!("{pair:?}");
-                };
-                assert_eq!(s.impact_index, *impact);
+    for stream in kinematic::acceptance_streams(FS) {
+        let (accel, pitch, truth) = (&stream.accel, &stream.pitch, &stream.truth);
+        let (events, found) = follow_throughs(accel, pitch);
+        assert_eq!(found.len(), truth.len(), "{events:?}");
+        // Stroke, follow-through, stroke, …
+        for pair in events.chunks(2) {
+            let [StreamEvent::Stroke(s), StreamEvent::FollowThrough { impact, .. }] = pair else {
+                panic!("{pair:?}");
+            };
+            assert_eq!(s.impact_index, *impact);
+        }
+        for (f, t) in found.iter().zip(truth.iter()) {
+            let e = error(*f, t);
+            // `FT_DEBUG=1`: each stroke's figures.
+            if std::env::var_os("FT_DEBUG").is_some() {
+                let st = &t.stroke;
+                println!(
+                    "speed {:.2} after {:.2} follow {:.3} truth {:.4} m {:.4} s found {:.4} m {:.4} s",
+                    st.speed,
+                    st.speed - st.delta_v,
+                    st.follow,
+                    st.follow_through_length(),
+                    st.follow_through_time(SLOW),
+                    f.1,
+                    f.2
+                );
             }
-            for (f, t) in found.iter().zip(&truth) {
-                let e = error(*f, t);
-                // `FT_DEBUG=1`: each stroke's figures.
-                if std::env::var_os("FT_DEBUG").is_some() {
-                    let st = &t.stroke;
-                    println!(
-                        "speed {:.2} after {:.2} follow {:.3} truth {:.4} m {:.4} s found {:.4} m {:.4} s",
-                        st.speed,
-                        st.speed - st.delta_v,
-                        st.follow,
-                        st.follow_through_length(),
-                        st.follow_through_time(SLOW),
-                        f.1,
-                        f.2
-                    );
-                }
-                all.add(e);
-            }
+            all.add(e);
         }
     }
     let (length_rms, time_rms) = all.rms();
@@ -262,35 +254,33 @@ fn with_pitch_change(degrees: f64) -> Vec<f64> {
     let lsb = f64::from(kinematic::SCALES.0);
     let gyro_lsb = f64::from(kinematic::SCALES.1);
     let mut errors = Vec::new();
-    for (noise_mg, seed) in [(3.0, 0x5712_0003u64), (8.0, 0x5712_0008)] {
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        for _ in 0..6 {
-            let strokes: Vec<_> = (0..10)
-                .map(|_| kinematic::acceptance_stroke(&mut rng))
-                .collect();
-            let noise = noise_mg * 1e-3 * kinematic::G;
-            let (mut accel, mut pitch, truth) = kinematic::stream(&strokes, FS, noise, &mut rng);
-            for (i, t) in truth.iter().enumerate() {
-                // Up and down in turn: the elevation returns after every second stroke.
-                let change = if i % 2 == 0 { 1.0 } else { -1.0 } * degrees.to_radians();
-                let s = &t.stroke;
-                let elevation = s.tilt(s.times()[4]);
-                let start = t.contact;
-                let span = ((s.contact + s.follow) * FS) as usize;
-                for k in start..accel.len() {
-                    let done = ((k - start) as f64 + 0.5).min(span as f64) / span as f64;
-                    let gravity = -kinematic::G * elevation.cos() * change * done;
-                    accel[k] = (f64::from(accel[k]) + gravity / lsb).round() as i16;
-                    if k < start + span {
-                        let rate = change / (span as f64 / FS);
-                        pitch[k] = (f64::from(pitch[k]) + rate / gyro_lsb).round() as i16;
-                    }
+    for stream in kinematic::acceptance_streams(FS) {
+        let kinematic::AcceptanceStream {
+            mut accel,
+            mut pitch,
+            truth,
+            ..
+        } = stream;
+        for (i, t) in truth.iter().enumerate() {
+            // Up and down in turn: the elevation returns after every second stroke.
+            let change = if i % 2 == 0 { 1.0 } else { -1.0 } * degrees.to_radians();
+            let s = &t.stroke;
+            let elevation = s.tilt(s.times()[4]);
+            let start = t.contact;
+            let span = ((s.contact + s.follow) * FS) as usize;
+            for k in start..accel.len() {
+                let done = ((k - start) as f64 + 0.5).min(span as f64) / span as f64;
+                let gravity = -kinematic::G * elevation.cos() * change * done;
+                accel[k] = (f64::from(accel[k]) + gravity / lsb).round() as i16;
+                if k < start + span {
+                    let rate = change / (span as f64 / FS);
+                    pitch[k] = (f64::from(pitch[k]) + rate / gyro_lsb).round() as i16;
                 }
             }
-            let (_, found) = follow_throughs(&accel, &pitch);
-            for (f, t) in found.iter().zip(&truth) {
-                errors.push(error(*f, t).0);
-            }
+        }
+        let (_, found) = follow_throughs(&accel, &pitch);
+        for (f, t) in found.iter().zip(truth.iter()) {
+            errors.push(error(*f, t).0);
         }
     }
     errors

@@ -259,25 +259,17 @@ fn continuous_streams_meet_the_acceptance_figures() {
     let mut all = Errors::default();
     let mut worst_index = 0;
     let (mut shortest, mut longest) = (f64::INFINITY, 0.0f64);
-    for (noise_mg, seed) in [(3.0, 0x5712_0003u64), (8.0, 0x5712_0008)] {
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        for _ in 0..6 {
-            let strokes: Vec<_> = (0..10)
-                .map(|_| kinematic::acceptance_stroke(&mut rng))
-                .collect();
-            for (s, _) in &strokes {
-                shortest = shortest.min(s.times()[4]);
-                longest = longest.max(s.times()[4]);
-            }
-            let noise = noise_mg * 1e-3 * kinematic::G;
-            let (accel, pitch, truth) = kinematic::stream(&strokes, FS, noise, &mut rng);
-            let mut est = estimator(FS);
-            let events = events(&mut est, &accel, Some(&pitch));
-            let (errors, worst) = check_stream(&events, &truth);
-            worst_index = worst_index.max(worst);
-            errors.iter().for_each(|&e| all.add(e));
-            assert_eq!(est.finish(), None);
+    for stream in kinematic::acceptance_streams(FS) {
+        for t in &stream.truth {
+            shortest = shortest.min(t.stroke.times()[4]);
+            longest = longest.max(t.stroke.times()[4]);
         }
+        let mut est = estimator(FS);
+        let events = events(&mut est, &stream.accel, Some(&stream.pitch));
+        let (errors, worst) = check_stream(&events, &stream.truth);
+        worst_index = worst_index.max(worst);
+        errors.iter().for_each(|&e| all.add(e));
+        assert_eq!(est.finish(), None);
     }
     println!(
         "continuous streams: {}; impact within {worst_index} samples; strokes {shortest:.2}-{longest:.2} s",

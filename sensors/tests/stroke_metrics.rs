@@ -19,8 +19,6 @@ mod kinematic;
 
 use cuesight_sensors::{StreamConfig, StreamEvent, StreamStroke, StreamingEstimator};
 use kinematic::{Stroke, Truth};
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
 
 const FS: f64 = 6667.0;
 
@@ -94,27 +92,20 @@ impl Worst {
 #[test]
 fn metrics_match_the_models_motion() {
     let mut worst = Worst::default();
-    for (noise_mg, seed) in [(3.0, 0x5712_0003u64), (8.0, 0x5712_0008)] {
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        for _ in 0..6 {
-            let strokes: Vec<_> = (0..10)
-                .map(|_| kinematic::acceptance_stroke(&mut rng))
-                .collect();
-            let noise = noise_mg * 1e-3 * kinematic::G;
-            let (accel, pitch, truth) = kinematic::stream(&strokes, FS, noise, &mut rng);
-            let mut est = StreamingEstimator::new(&StreamConfig::new(FS as f32)).unwrap();
-            let found: Vec<StreamStroke> = accel
-                .iter()
-                .zip(&pitch)
-                .filter_map(|(&a, &p)| match est.push_raw(a, Some(p)) {
-                    Some(StreamEvent::Stroke(s)) => Some(s),
-                    _ => None,
-                })
-                .collect();
-            assert_eq!(found.len(), truth.len());
-            for (s, t) in found.iter().zip(&truth) {
-                worst.add(s, t);
-            }
+    for stream in kinematic::acceptance_streams(FS) {
+        let mut est = StreamingEstimator::new(&StreamConfig::new(FS as f32)).unwrap();
+        let found: Vec<StreamStroke> = stream
+            .accel
+            .iter()
+            .zip(&stream.pitch)
+            .filter_map(|(&a, &p)| match est.push_raw(a, Some(p)) {
+                Some(StreamEvent::Stroke(s)) => Some(s),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(found.len(), stream.truth.len());
+        for (s, t) in found.iter().zip(&stream.truth) {
+            worst.add(s, t);
         }
     }
     println!(

@@ -43,13 +43,16 @@ impl Sampler {
         Lsm6dsox::new(&mut part, ADDRESS_SA0_LOW)
             .init()
             .map_err(StartError::Imu)?;
-        let estimator =
-            StreamingEstimator::new(&StreamConfig {
-                // Each reported stroke's follow-through, once the cue is still again.
-                follow_through: true,
-                ..StreamConfig::new(rate_hz)
-            })
-            .map_err(StartError::Rate)?;
+        #[allow(unused_mut)] // without the `live` feature
+        let mut config = StreamConfig::new(rate_hz);
+        // Each reported stroke's follow-through, once the cue is still again (the
+        // `live` feature turns the estimator's `follow-through` feature on; this module
+        // is compiled, not linked, in the other images).
+        #[cfg(feature = "live")]
+        {
+            config.follow_through = true;
+        }
+        let estimator = StreamingEstimator::new(&config).map_err(StartError::Rate)?;
         *slot = Some(Self {
             part,
             estimator,

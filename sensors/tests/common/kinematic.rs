@@ -381,3 +381,35 @@ pub fn acceptance_stroke(rng: &mut ChaCha8Rng) -> (Stroke, f64) {
     let gap = rng.random_range(0.5..3.0);
     (stroke, gap)
 }
+
+/// One continuous stream of the streaming acceptance set, with its truth.
+pub struct AcceptanceStream {
+    /// RMS accelerometer noise (mg).
+    pub noise_mg: f64,
+    pub accel: Vec<i16>,
+    pub pitch: Vec<i16>,
+    pub truth: Vec<Truth>,
+}
+
+/// The streaming acceptance set at `fs` (`tests/streaming.rs`, `tests/stroke_metrics.rs`,
+/// `tests/follow_through.rs`): 120 [`acceptance_stroke`]s in 12 continuous streams of
+/// 10, six at 3 mg RMS noise and six at 8 mg, each half drawn from its own seed.
+pub fn acceptance_streams(fs: f64) -> Vec<AcceptanceStream> {
+    use rand::SeedableRng;
+    let mut streams = Vec::new();
+    for (noise_mg, seed) in [(3.0, 0x5712_0003u64), (8.0, 0x5712_0008)] {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        for _ in 0..6 {
+            let strokes: Vec<_> = (0..10).map(|_| acceptance_stroke(&mut rng)).collect();
+            let noise = noise_mg * 1e-3 * G;
+            let (accel, pitch, truth) = stream(&strokes, fs, noise, &mut rng);
+            streams.push(AcceptanceStream {
+                noise_mg,
+                accel,
+                pitch,
+                truth,
+            });
+        }
+    }
+    streams
+}
