@@ -1,7 +1,31 @@
 //! Running external commands: echo them, run them, turn a failure into a [`Failure`].
 
+use std::cell::RefCell;
+use std::fs::File;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitStatus};
+
+thread_local! {
+    /// Where [`run`] sends a command's echo and output on this thread instead of this
+    /// process's stderr (`None`: stderr). Set by [`logging_to`].
+    static LOG: RefCell<Option<File>> = const { RefCell::new(None) };
+}
+
+/// Runs `body` with every [`run`] it makes on this thread echoing to, and sending the
+/// command's output to, `log`: for work on a thread of its own (`cargo xtask test`'s
+/// installs) whose output would otherwise cut into the steps' log.
+pub fn logging_to<T>(log: File, body: impl FnOnce() -> T) -> T {
+    LOG.with(|slot| *slot.borrow_mut() = Some(log));
+    let result = body();
+    LOG.with(|slot| *slot.borrow_mut() = None);
+    result
+}
+
+/// A handle on this thread's log file, if [`logging_to`] set one.
+fn thread_log() -> Option<std::io::Result<File>> {
+    LOG.with(|slot| slot.borrow().as_ref().map(File::try_clone))
+}
 
 /// Why a task failed, and the exit code `cargo xtask` ends with.
 #[derive(Debug)]
@@ -67,13 +91,22 @@ pub fn run(cmd: &mut Command) -> Result {
         cmd.current_dir(root());
     }
     let shown = display(cmd);
-    // The log of every step is stderr's, the command's included: stdout is left to a
-    // command's own result (`cargo xtask live`'s JSON lines).
-    eprintln!("$ {shown}");
-    let status = cmd
-        .stdout(std::io::stderr())
-        .status()
-        .map_err(|e| Failure::new(format!("cannot start `{shown}`: {e}")))?;
+    let cannot = |e: std::io::Error| Failure::new(format!("cannot start `{shown}`: {e}"));
+    match thread_log() {
+        Some(log) => {
+            let mut log = log.map_err(cannot)?;
+            // A lost echo line is no reason to fail the command.
+            let _ = writeln!(log, "$ {shown}");
+            cmd.stdout(log.try_clone().map_err(cannot)?).stderr(log);
+        }
+        None => {
+            // The log of every step is stderr's, the command's included: stdout is
+            // left to a command's own result (`cargo xtask live`'s JSON lines).
+            eprintln!("$ {shown}");
+            cmd.stdout(std::io::stderr());
+        }
+    }
+    let status = cmd.status().map_err(cannot)?;
     check(&shown, status)
 }
 

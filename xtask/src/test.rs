@@ -1,6 +1,10 @@
 //! `cargo xtask test`: every check, in order, each under a header; stops at the
 //! first failure unless asked to keep going, and ends with a one-line summary.
 
+use std::fs::File;
+use std::path::PathBuf;
+use std::sync::Mutex;
+use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use crate::cmd::{self, Failure, Result};
@@ -80,6 +84,10 @@ const STEPS: &[Step] = &[
     Step {
         title: "firmware: release build",
         action: qemu::build_release,
+    },
+    Step {
+        title: "tools: qemu-system-arm and defmt-print, installed beside the steps so far if missing (log: target/xtask/install.log)",
+        action: tools_ready,
     },
     Step {
         title: "firmware: on-target unit tests in QEMU (defmt-test, release profile)",
@@ -330,13 +338,64 @@ fn live_cue() -> Result {
     cmd::run_with_timeout(&mut test, Duration::from_secs(600))
 }
 
+/// The install of what the QEMU steps need (`tools::ensure_for_qemu`: QEMU by apt-get,
+/// defmt-print by `cargo install`), running on a thread of its own while the host steps
+/// run; taken by [`tools_ready`].
+static INSTALLS: Mutex<Option<JoinHandle<Result>>> = Mutex::new(None);
+
+/// Where the background install's commands write their output.
+fn install_log() -> PathBuf {
+    cmd::root().join("target").join("xtask").join("install.log")
+}
+
+/// Starts [`INSTALLS`]. On a bare machine defmt-print's build took 75 s before the
+/// first step could start; beside the host steps, at the lowest CPU priority, it takes
+/// what they leave idle. Nothing that needs QEMU or defmt-print runs before the step
+/// [`tools_ready`] has joined the install, so no step's deadline (the demo session's
+/// 60 s) is spent on one.
+fn install_in_background() -> Result {
+    let path = install_log();
+    let log = path
+        .parent()
+        .map_or(Ok(()), std::fs::create_dir_all)
+        .and_then(|()| File::create(&path))
+        .map_err(|e| Failure::new(format!("cannot write {}: {e}", path.display())))?;
+    let handle = std::thread::spawn(move || cmd::logging_to(log, tools::ensure_for_qemu));
+    *INSTALLS
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner()) = Some(handle);
+    Ok(())
+}
+
+/// Waits for [`INSTALLS`] (or installs now, if no install was started) and shows the
+/// install's log when it failed.
+fn tools_ready() -> Result {
+    let pending = INSTALLS
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+        .take();
+    let Some(handle) = pending else {
+        return tools::ensure_for_qemu();
+    };
+    let waited = Instant::now();
+    let result = handle
+        .join()
+        .unwrap_or_else(|_| Err(Failure::new("the install thread panicked")));
+    println!("xtask: waited {:.1} s for the install", secs(waited));
+    if result.is_err() {
+        if let Ok(log) = std::fs::read_to_string(install_log()) {
+            eprintln!("{log}");
+        }
+    }
+    result
+}
+
 /// Runs every step (see [`STEPS`]).
 pub fn run_all(keep_going: bool) -> Result {
     let started = Instant::now();
     let total = STEPS.len();
-    // Everything any step needs, installed before the first step runs, so no step's
-    // deadline (the demo session's 60 s) is spent on an install (apt-get, cargo install).
-    tools::ensure_for_qemu()?;
+    tools::ensure_toolchain()?;
+    install_in_background()?;
     let mut failed: Vec<&str> = Vec::new();
     let mut first_failure: Option<Failure> = None;
     let mut ran = 0;
@@ -366,6 +425,15 @@ pub fn run_all(keep_going: bool) -> Result {
                 }
             }
         }
+    }
+    // After a failure the install may still run: let it finish rather than leave an
+    // apt-get or a cargo install behind this process.
+    let pending = INSTALLS
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+        .take();
+    if let Some(handle) = pending {
+        let _ = handle.join();
     }
     let passed = ran - failed.len();
     let skipped = total - ran;

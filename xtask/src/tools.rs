@@ -144,7 +144,7 @@ pub fn defmt_print() -> Result<PathBuf> {
         return Ok(found);
     }
     eprintln!("xtask: defmt-print not found; installing it with cargo install (about a minute)");
-    cmd::run(cmd::cargo().args([
+    cmd::run(lowest_priority(cmd::cargo()).args([
         "install",
         "defmt-print",
         "--locked",
@@ -157,6 +157,22 @@ pub fn defmt_print() -> Result<PathBuf> {
             "defmt-print was installed but is neither on PATH nor in cargo's bin directory",
         )
     })
+}
+
+/// `command` under `nice -n 19` where coreutils' `nice` runs, else `command` itself:
+/// `cargo xtask test` builds defmt-print beside its first steps, and at the lowest
+/// priority that build takes only the CPU they leave idle (a test binary running on
+/// one core, a link, a download).
+fn lowest_priority(command: Command) -> Command {
+    if probe(Command::new("nice").arg("true")).is_none() {
+        return command;
+    }
+    let mut niced = Command::new("nice");
+    niced
+        .args(["-n", "19"])
+        .arg(command.get_program())
+        .args(command.get_args());
+    niced
 }
 
 fn find_defmt_print() -> Option<PathBuf> {
