@@ -27,7 +27,7 @@ def _build_cli() -> Optional[Path]:
     if cargo is None or not (REPO / "host-tests").is_dir():
         return None
     subprocess.run(
-        [cargo, "build", "-q", "-p", "cuesight-host", "--bin", "cuesight"],
+        [cargo, "build", "-q", "--bin", "cuesight"],
         cwd=REPO,
         check=True,
     )

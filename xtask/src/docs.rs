@@ -239,8 +239,12 @@ fn sizes_of(elf: &Path) -> Result<size::Sizes> {
     )))
 }
 
-/// The CLI, as README.md runs it.
-const CLI: &str = "cargo run -q -p cuesight-host --bin cuesight --";
+/// The CLI, as README.md runs it: `--bin` without `-p` resolves the dependencies'
+/// features over the whole workspace, as `cargo test --workspace` and `cargo xtask`
+/// (with its feature unification) do, so after them it is a no-op. `-p cuesight-host`
+/// resolved its own features and recompiled 25 crates, core, link, sensors, nalgebra
+/// and cuesight-host among them (95 s of CPU on a CI build that had run the tests).
+const CLI: &str = "cargo run -q --bin cuesight --";
 
 /// The number at `path` of a JSON value (element `i` if it is an array).
 fn number(value: &serde_json::Value, path: &[&str], i: usize) -> Result<f64> {

@@ -51,11 +51,11 @@ const STEPS: &[Step] = &[
         action: rustdoc,
     },
     Step {
-        title: "python: rustfmt and clippy of the Python package (python/, its own workspace)",
+        title: "python: rustfmt of the Python package (python/, its own workspace)",
         action: crate::python::lint,
     },
     Step {
-        title: "python: pip install ./python into target/python/venv, pytest against the cuesight CLI",
+        title: "python: pip install ./python into target/python/venv (the extension linted by clippy as it builds), pytest against the cuesight CLI",
         action: crate::python::tests,
     },
     Step {
@@ -187,13 +187,10 @@ fn panic_never() -> Result {
     ])
 }
 
-/// The `nrf52840` board, linted and built in release in its own target directory (flash
-/// it with `probe-rs run --chip nRF52840_xxAA <elf>`, see the README), its flash and
-/// static RAM held to the budgets. `--no-default-features` leaves the `shot` request
-/// out too (the board's image with it is over the flash budget), so this also builds
-/// and lints the firmware without `shot`.
 /// The nrf52840 board's arguments: release, its feature alone (no `shot`), its own
-/// target directory.
+/// target directory. `--no-default-features` leaves the `shot` request out too (the
+/// board's image with it is over the flash budget), so this also builds and lints the
+/// firmware without `shot`.
 const NRF52840: [&str; 6] = [
     "--release",
     "--no-default-features",
@@ -212,18 +209,21 @@ pub fn nrf52840_elf() -> std::path::PathBuf {
         .join("cuesight-firmware")
 }
 
-/// Builds the nrf52840 board's release image.
+/// Builds the nrf52840 board's release image, linted as it builds
+/// ([`tools::lint_while_building`]; flash it with `probe-rs run --chip nRF52840_xxAA
+/// <elf>`, see the README). Always linted, so `cargo xtask docs`, which measures this
+/// image too, finds the step's build current.
 pub fn build_nrf52840() -> Result {
-    let mut build = vec!["build"];
-    build.extend(NRF52840);
-    cargo_in_firmware(&build)
+    let mut build = cmd::cargo();
+    build
+        .arg("build")
+        .args(NRF52840)
+        .current_dir(cmd::firmware_dir());
+    cmd::run(tools::lint_while_building(&mut build)?)
 }
 
+/// The nrf52840 board, linted and built, its flash and static RAM held to the budgets.
 fn nrf52840() -> Result {
-    let mut clippy = vec!["clippy"];
-    clippy.extend(NRF52840);
-    clippy.extend(["--", "-D", "warnings"]);
-    cargo_in_firmware(&clippy)?;
     build_nrf52840()?;
     size::check_budgets(&nrf52840_elf())
 }
