@@ -220,14 +220,12 @@ fn firmware_sizes() -> Result<size::Sizes> {
 /// Always built (cargo does nothing when it is current): an image left from an older
 /// commit gave a stale figure that only `--check` in CI caught.
 fn nrf52840_sizes() -> Result<size::Sizes> {
-    crate::test::build_nrf52840()?;
-    sizes_of(&crate::test::nrf52840_elf())
+    sizes_of(&crate::images::NRF52840.build()?)
 }
 
 /// The live image (issue 15), always built, as the CI step builds it.
 fn live_sizes() -> Result<size::Sizes> {
-    qemu::build_live()?;
-    sizes_of(&qemu::live_elf_path())
+    sizes_of(&crate::images::LIVE.build()?)
 }
 
 fn sizes_of(elf: &Path) -> Result<size::Sizes> {

@@ -159,10 +159,10 @@ pub fn run(args: &Args) -> Result {
         ),
     };
     tools::ensure_for_qemu()?;
-    if args.elf.is_none() {
-        crate::qemu::build_live()?;
-    }
-    let elf = args.elf.clone().unwrap_or_else(crate::qemu::live_elf_path);
+    let elf = match &args.elf {
+        Some(elf) => elf.clone(),
+        None => crate::images::LIVE.build()?,
+    };
     let defmt_print = tools::defmt_print()?;
     eprintln!(
         "xtask live: {} samples at {} Hz from {} (QEMU -icount shift=0,sleep=off; the trace file through semihosting)",

@@ -21,6 +21,8 @@ mod cmd;
 mod docs;
 mod format;
 mod fuzz;
+mod images;
+mod install;
 mod lines;
 mod live;
 mod python;

@@ -42,35 +42,6 @@ pub fn build_release() -> Result {
     )
 }
 
-/// Target directory of the live image (the `live` feature), beside the default one.
-pub const LIVE_TARGET_DIR: &str = "target/live";
-
-/// `cargo build --release --no-default-features --features live` in `firmware/` (the
-/// live image leaves the stroke upload out), into [`LIVE_TARGET_DIR`].
-pub fn build_live() -> Result {
-    cmd::run(
-        cmd::cargo()
-            .args([
-                "build",
-                "--release",
-                "--no-default-features",
-                "--features",
-                "live",
-            ])
-            .args(["--target-dir", LIVE_TARGET_DIR])
-            .current_dir(cmd::firmware_dir()),
-    )
-}
-
-/// The live image's release ELF.
-pub fn live_elf_path() -> PathBuf {
-    cmd::firmware_dir()
-        .join(LIVE_TARGET_DIR)
-        .join(tools::TARGET)
-        .join("release")
-        .join(FIRMWARE_BIN)
-}
-
 /// The release ELF (honours `CARGO_TARGET_DIR`, which cargo resolves from the cwd).
 pub fn elf_path() -> PathBuf {
     let target_dir = match std::env::var_os("CARGO_TARGET_DIR") {

@@ -1,14 +1,10 @@
 //! `cargo xtask test`: every check, in order, each under a header; stops at the
 //! first failure unless asked to keep going, and ends with a one-line summary.
 
-use std::fs::File;
-use std::path::PathBuf;
-use std::sync::Mutex;
-use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use crate::cmd::{self, Failure, Result};
-use crate::{qemu, size, tools};
+use crate::{images, install, qemu, size, tools};
 
 /// One check: a title and what it runs.
 struct Step {
@@ -51,11 +47,11 @@ const STEPS: &[Step] = &[
         action: rustdoc,
     },
     Step {
-        title: "python: rustfmt of the Python package (python/, its own workspace)",
+        title: "python: rustfmt and clippy of the Python package (python/, its own workspace)",
         action: crate::python::lint,
     },
     Step {
-        title: "python: pip install ./python into target/python/venv (the extension linted by clippy as it builds), pytest against the cuesight CLI",
+        title: "python: pip install ./python into target/python/venv, pytest against the cuesight CLI",
         action: crate::python::tests,
     },
     Step {
@@ -87,7 +83,7 @@ const STEPS: &[Step] = &[
     },
     Step {
         title: "tools: qemu-system-arm and defmt-print, installed beside the steps so far if missing (log: target/xtask/install.log)",
-        action: tools_ready,
+        action: install::ready,
     },
     Step {
         title: "firmware: on-target unit tests in QEMU (defmt-test, release profile)",
@@ -177,55 +173,13 @@ fn on_target_tests() -> Result {
 }
 
 fn panic_never() -> Result {
-    cargo_in_firmware(&[
-        "build",
-        "--release",
-        "--features",
-        "panic-never",
-        "--target-dir",
-        "target/panic-never",
-    ])
-}
-
-/// The nrf52840 board's arguments: release, its feature alone (no `shot`), its own
-/// target directory. `--no-default-features` leaves the `shot` request out too (the
-/// board's image with it is over the flash budget), so this also builds and lints the
-/// firmware without `shot`.
-const NRF52840: [&str; 6] = [
-    "--release",
-    "--no-default-features",
-    "--features",
-    "nrf52840",
-    "--target-dir",
-    "target/nrf52840",
-];
-
-/// The nrf52840 board's release ELF.
-pub fn nrf52840_elf() -> std::path::PathBuf {
-    cmd::firmware_dir()
-        .join("target/nrf52840")
-        .join(tools::TARGET)
-        .join("release")
-        .join("cuesight-firmware")
-}
-
-/// Builds the nrf52840 board's release image, linted as it builds
-/// ([`tools::lint_while_building`]; flash it with `probe-rs run --chip nRF52840_xxAA
-/// <elf>`, see the README). Always linted, so `cargo xtask docs`, which measures this
-/// image too, finds the step's build current.
-pub fn build_nrf52840() -> Result {
-    let mut build = cmd::cargo();
-    build
-        .arg("build")
-        .args(NRF52840)
-        .current_dir(cmd::firmware_dir());
-    cmd::run(tools::lint_while_building(&mut build)?)
+    images::PANIC_NEVER.build().map(drop)
 }
 
 /// The nrf52840 board, linted and built, its flash and static RAM held to the budgets.
+/// Flash it with `probe-rs run --chip nRF52840_xxAA <elf>` (README).
 fn nrf52840() -> Result {
-    build_nrf52840()?;
-    size::check_budgets(&nrf52840_elf())
+    size::check_budgets(&images::NRF52840.build()?)
 }
 
 /// Issue 6's stack budget: the painted peak the firmware logs at `shutdown`.
@@ -308,20 +262,8 @@ fn end_to_end_shot() -> Result {
 /// impact; no stroke upload): linted, built, held to the flash and static RAM budgets,
 /// and `host-tests/tests/e2e_live.rs` run on it.
 fn live_cue() -> Result {
-    cargo_in_firmware(&[
-        "clippy",
-        "--release",
-        "--no-default-features",
-        "--features",
-        "live",
-        "--target-dir",
-        qemu::LIVE_TARGET_DIR,
-        "--",
-        "-D",
-        "warnings",
-    ])?;
-    qemu::build_live()?;
-    size::check_live_budgets(&qemu::live_elf_path())?;
+    let elf = images::LIVE.build()?;
+    size::check_live_budgets(&elf)?;
     tools::ensure_qemu()?;
     let defmt_print = tools::defmt_print()?;
     let mut test = e2e_test("e2e_live");
@@ -333,61 +275,9 @@ fn live_cue() -> Result {
         "--skip",
         "100_synthetic_strokes",
     ])
-    .env("CUESIGHT_LIVE_ELF", qemu::live_elf_path())
+    .env("CUESIGHT_LIVE_ELF", &elf)
     .env("DEFMT_PRINT", defmt_print);
     cmd::run_with_timeout(&mut test, Duration::from_secs(600))
-}
-
-/// The install of what the QEMU steps need (`tools::ensure_for_qemu`: QEMU by apt-get,
-/// defmt-print by `cargo install`), running on a thread of its own while the host steps
-/// run; taken by [`tools_ready`].
-static INSTALLS: Mutex<Option<JoinHandle<Result>>> = Mutex::new(None);
-
-/// Where the background install's commands write their output.
-fn install_log() -> PathBuf {
-    cmd::root().join("target").join("xtask").join("install.log")
-}
-
-/// Starts [`INSTALLS`]. On a bare machine defmt-print's build took 75 s before the
-/// first step could start; beside the host steps, at the lowest CPU priority, it takes
-/// what they leave idle. Nothing that needs QEMU or defmt-print runs before the step
-/// [`tools_ready`] has joined the install, so no step's deadline (the demo session's
-/// 60 s) is spent on one.
-fn install_in_background() -> Result {
-    let path = install_log();
-    let log = path
-        .parent()
-        .map_or(Ok(()), std::fs::create_dir_all)
-        .and_then(|()| File::create(&path))
-        .map_err(|e| Failure::new(format!("cannot write {}: {e}", path.display())))?;
-    let handle = std::thread::spawn(move || cmd::logging_to(log, tools::ensure_for_qemu));
-    *INSTALLS
-        .lock()
-        .unwrap_or_else(|poisoned| poisoned.into_inner()) = Some(handle);
-    Ok(())
-}
-
-/// Waits for [`INSTALLS`] (or installs now, if no install was started) and shows the
-/// install's log when it failed.
-fn tools_ready() -> Result {
-    let pending = INSTALLS
-        .lock()
-        .unwrap_or_else(|poisoned| poisoned.into_inner())
-        .take();
-    let Some(handle) = pending else {
-        return tools::ensure_for_qemu();
-    };
-    let waited = Instant::now();
-    let result = handle
-        .join()
-        .unwrap_or_else(|_| Err(Failure::new("the install thread panicked")));
-    println!("xtask: waited {:.1} s for the install", secs(waited));
-    if result.is_err() {
-        if let Ok(log) = std::fs::read_to_string(install_log()) {
-            eprintln!("{log}");
-        }
-    }
-    result
 }
 
 /// Runs every step (see [`STEPS`]).
@@ -395,7 +285,7 @@ pub fn run_all(keep_going: bool) -> Result {
     let started = Instant::now();
     let total = STEPS.len();
     tools::ensure_toolchain()?;
-    install_in_background()?;
+    install::start()?;
     let mut failed: Vec<&str> = Vec::new();
     let mut first_failure: Option<Failure> = None;
     let mut ran = 0;
@@ -428,13 +318,7 @@ pub fn run_all(keep_going: bool) -> Result {
     }
     // After a failure the install may still run: let it finish rather than leave an
     // apt-get or a cargo install behind this process.
-    let pending = INSTALLS
-        .lock()
-        .unwrap_or_else(|poisoned| poisoned.into_inner())
-        .take();
-    if let Some(handle) = pending {
-        let _ = handle.join();
-    }
+    install::finish();
     let passed = ran - failed.len();
     let skipped = total - ran;
     println!();
@@ -456,6 +340,6 @@ pub fn run_all(keep_going: bool) -> Result {
     }
 }
 
-fn secs(since: Instant) -> f64 {
+pub fn secs(since: Instant) -> f64 {
     since.elapsed().as_secs_f64()
 }
