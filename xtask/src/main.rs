@@ -21,6 +21,7 @@ mod cmd;
 mod docs;
 mod format;
 mod fuzz;
+mod host_tests;
 mod images;
 mod install;
 mod lines;
@@ -85,6 +86,9 @@ enum Command {
         /// Run the remaining steps after a failure instead of stopping.
         #[arg(long)]
         keep_going: bool,
+        /// Run only the steps whose title contains this text (e.g. "host: tests").
+        #[arg(long, value_name = "TEXT")]
+        only: Option<String>,
     },
 }
 
@@ -117,7 +121,7 @@ fn main() -> ExitCode {
                     live::run(&live::Args::demo())
                 }
             }),
-        Command::Test { keep_going } => test::run_all(keep_going),
+        Command::Test { keep_going, only } => test::run_all(keep_going, only.as_deref()),
         Command::Live(args) => live::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Docs(args) => docs::run(&args),

@@ -40,7 +40,7 @@ const STEPS: &[Step] = &[
     },
     Step {
         title: "host: tests",
-        action: host_tests,
+        action: crate::host_tests::run,
     },
     Step {
         title: "host: rustdoc, warnings denied",
@@ -134,15 +134,6 @@ const STEPS: &[Step] = &[
         action: crate::fuzz::check,
     },
 ];
-
-/// `cargo test --workspace` as two runs: the unit, binary and integration tests, then the
-/// doctests. Named targets leave the examples out: plain `cargo test` compiles each one
-/// (never runs it), in the dev profile where `cuesight-host` is optimised, and "host:
-/// clippy" (`--all-targets`) has already checked them.
-fn host_tests() -> Result {
-    cargo_at_root(&["test", "--workspace", "--tests"])?;
-    cargo_at_root(&["test", "--workspace", "--doc"])
-}
 
 /// `cargo doc --no-deps --workspace` with every rustdoc warning an error (broken
 /// intra-doc links, bad code-block attributes, ...). The doctests themselves run in
@@ -280,8 +271,8 @@ fn live_cue() -> Result {
     cmd::run_with_timeout(&mut test, Duration::from_secs(600))
 }
 
-/// Runs every step (see [`STEPS`]).
-pub fn run_all(keep_going: bool) -> Result {
+/// Runs every step (see [`STEPS`]), or those whose title contains `only`.
+pub fn run_all(keep_going: bool, only: Option<&str>) -> Result {
     let started = Instant::now();
     let total = STEPS.len();
     tools::ensure_toolchain()?;
@@ -290,6 +281,9 @@ pub fn run_all(keep_going: bool) -> Result {
     let mut first_failure: Option<Failure> = None;
     let mut ran = 0;
     for (i, step) in STEPS.iter().enumerate() {
+        if only.is_some_and(|text| !step.title.contains(text)) {
+            continue;
+        }
         println!("\n==> [{}/{total}] {}", i + 1, step.title);
         let step_start = Instant::now();
         let result = (step.action)();
