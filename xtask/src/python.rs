@@ -4,8 +4,9 @@
 //! the target directory, and its pytest suite run against the `cuesight` CLI, the
 //! reference of identity (`python/tests/conftest.py`).
 //!
-//! Both steps build into `<target>/python/cargo` (`CARGO_TARGET_DIR`), so nothing is
-//! written inside `python/` and a second run reuses the first's build. The extension
+//! pip builds the extension into `<target>/python/cargo` (`CARGO_TARGET_DIR`), so
+//! nothing is written inside `python/` and a second run reuses the first's build, and
+//! clippy lints the package's crate in that build (`tools::lint_while_building`). The extension
 //! depends on `cuesight-host` (the CLI's code: `shot`, `calibrate`, the reference
 //! solver), so that build includes the host crate and its dependencies: about 165 s
 //! cold, 34 s warm on 2 shared cores. The calibration tests read the shared
@@ -45,20 +46,12 @@ fn cargo_in_package(args: &[&str]) -> Result {
     )
 }
 
-/// `cargo fmt --check` and `cargo clippy -D warnings` on the package's Rust crate (its
-/// own workspace). Needs no Python beyond the interpreter pyo3's build script looks for.
+/// `cargo fmt --check` on the package's Rust crate (its own workspace). Clippy lints it
+/// in [`tests`], while pip builds it.
 pub fn lint() -> Result {
     // Not `--all`: that would format the path dependencies too (core, link, sensors),
     // which "host: rustfmt" checks already.
-    cargo_in_package(&["fmt", "--", "--check"])?;
-    cargo_in_package(&[
-        "clippy",
-        "--release",
-        "--all-targets",
-        "--",
-        "-D",
-        "warnings",
-    ])
+    cargo_in_package(&["fmt", "--", "--check"])
 }
 
 /// A Python 3.9 or newer to make the virtual environment with: `python3`, else `python`.
@@ -104,21 +97,19 @@ fn cli() -> Result<PathBuf> {
 /// `python/tests` with `CUESIGHT_CLI` set, so no test is skipped for want of the CLI.
 pub fn tests() -> Result {
     let python = venv_python()?;
-    let pip = |args: &[&str]| {
-        cmd::run(
-            Command::new(&python)
-                .args(["-m", "pip", "--disable-pip-version-check", "install", "-q"])
-                .args(args)
-                .env("CARGO_TARGET_DIR", python_target_dir().join("cargo"))
-                // The CI build need not be the fastest extension (fat LTO and one
-                // codegen unit are for the throughput benchmark): a thin, parallel
-                // release build halves the step's cold time. Optimisation does not
-                // change an f32 result (no fast-math), so the identity tests hold.
-                .env("CARGO_PROFILE_RELEASE_LTO", "false")
-                .env("CARGO_PROFILE_RELEASE_CODEGEN_UNITS", "16"),
-        )
-    };
-    pip(&["./python", "pytest", "numpy"])?;
+    let mut pip = Command::new(&python);
+    pip.args(["-m", "pip", "--disable-pip-version-check", "install", "-q"])
+        .args(["./python", "pytest", "numpy"])
+        .env("CARGO_TARGET_DIR", python_target_dir().join("cargo"))
+        // The CI build need not be the fastest extension (fat LTO and one codegen unit
+        // are for the throughput benchmark): a thin, parallel release build halves the
+        // step's cold time. Optimisation does not change an f32 result (no fast-math),
+        // so the identity tests hold.
+        .env("CARGO_PROFILE_RELEASE_LTO", "false")
+        .env("CARGO_PROFILE_RELEASE_CODEGEN_UNITS", "16");
+    // pip's build backend (maturin) runs cargo with this environment, so the package's
+    // crate is linted as `cargo clippy -- -D warnings` would, in the one build.
+    cmd::run(crate::tools::lint_while_building(&mut pip)?)?;
     let cli = cli()?;
     // From the repository root: `import cuesight` is then the installed package, not
     // python/cuesight/ (the sources, without the compiled extension).

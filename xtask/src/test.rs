@@ -47,11 +47,11 @@ const STEPS: &[Step] = &[
         action: rustdoc,
     },
     Step {
-        title: "python: rustfmt and clippy of the Python package (python/, its own workspace)",
+        title: "python: rustfmt of the Python package (python/, its own workspace)",
         action: crate::python::lint,
     },
     Step {
-        title: "python: pip install ./python into target/python/venv, pytest against the cuesight CLI",
+        title: "python: pip install ./python into target/python/venv (its crate linted by clippy as it builds), pytest against the cuesight CLI",
         action: crate::python::tests,
     },
     Step {

@@ -102,6 +102,42 @@ pub fn ensure_for_qemu() -> Result {
     defmt_print().map(drop)
 }
 
+/// `build` (a `cargo build`, or a build cargo runs for another tool: maturin's) made to
+/// lint the workspace's own crates as `cargo clippy -- -D warnings` would: clippy-driver
+/// as their compiler (`RUSTC_WORKSPACE_WRAPPER` and `CLIPPY_ARGS`, what `cargo clippy`
+/// sets for its `cargo check`). The build fails on a lint and still compiles everything;
+/// the dependencies are compiled once, for the build, where a separate `cargo clippy`
+/// compiled them once more in check mode (the Python package: 60 s of clippy beside its
+/// pip build in a bare-machine CI run). Only workspace members are linted, as `cargo
+/// clippy` lints them: the path dependencies outside the workspace (core, link, sensors)
+/// have their own clippy run in the host workspace.
+///
+/// clippy-driver compiles the crates it lints with MIR optimisations off, so what it
+/// builds is not byte for byte what a plain build makes: the firmware images, whose
+/// sizes are held to budgets, are never built this way (the live image came out 56 B
+/// smaller). The Python extension CI builds is for its tests alone (it is already built
+/// without LTO, in 16 codegen units); MIR optimisation changes no f32 result, and the
+/// tests hold every number to the CLI's bits.
+pub fn lint_while_building(build: &mut Command) -> Result<&mut Command> {
+    let driver = clippy_driver()?;
+    Ok(build.env("RUSTC_WORKSPACE_WRAPPER", driver).env(
+        "CLIPPY_ARGS",
+        "-D__CLIPPY_HACKERY__warnings__CLIPPY_HACKERY__",
+    ))
+}
+
+/// The toolchain's clippy-driver (the clippy component, see [`ensure_toolchain`]).
+fn clippy_driver() -> Result<PathBuf> {
+    probe(Command::new("rustup").args(["which", "clippy-driver"]))
+        .map(|path| PathBuf::from(path.trim()))
+        .or_else(|| {
+            probe(Command::new("clippy-driver").arg("--version")).map(|_| "clippy-driver".into())
+        })
+        .ok_or_else(|| {
+            Failure::new("clippy-driver not found: `rustup component add clippy` installs it")
+        })
+}
+
 /// `qemu-system-arm`, from Debian/Ubuntu's `qemu-system-arm` package if missing.
 pub fn ensure_qemu() -> Result {
     if probe(Command::new("qemu-system-arm").arg("--version")).is_some() {
