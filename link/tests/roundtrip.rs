@@ -1325,6 +1325,8 @@ fn strategies_reach_every_variant() {
         expected.len(),
         enums.len()
     );
+    cuesight_figures::record!("link-schema-variants", "{}", expected.len());
+    cuesight_figures::record!("link-schema-enums", "{}", enums.len());
     assert!(coverage.some > 1000 && coverage.none > 1000);
     for len in [0, MAX_SAMPLES, MAX_SAMPLES - 1, MAX_OBJECT_BALLS] {
         assert!(coverage.seq_lengths.contains(&len), "no sequence of {len}");

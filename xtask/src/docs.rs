@@ -21,7 +21,17 @@
 //!
 //! (inline, or on lines of its own) is a figure computed here: the values are listed in
 //! [`value`] (firmware sizes from the release ELF, the link's limits from
-//! `cuesight-link`, differences between two commands' JSON answers).
+//! `cuesight-link`, differences between two commands' JSON answers). And
+//!
+//! ```text
+//! <!-- docs:figure KEY -->...<!-- /docs -->
+//! ```
+//!
+//! is a figure a test measured and recorded (`cuesight_figures::record!`, under
+//! `target/figures/`): `cargo xtask docs` writes what the last run of that test
+//! recorded, and `--check` fails on a figure the tests did not record. `docs:figure
+//! KEY by-hand` marks one recorded by a test CI does not run (`#[ignore]`d for its
+//! time): checked when a recording exists, else listed as unchecked.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -58,6 +68,7 @@ struct Block {
 
 pub fn run(args: &Args) -> Result {
     let mut stale = Vec::new();
+    let mut unchecked = Vec::new();
     let mut blocks_seen = 0;
     for file in files()? {
         let text = std::fs::read_to_string(&file)
@@ -72,10 +83,17 @@ pub fn run(args: &Args) -> Result {
         let mut at = 0;
         for block in &blocks {
             blocks_seen += 1;
-            let now = render(&block.spec, is_inline(&text, block))?;
             let was = &text[block.content.clone()];
+            let line = text[..block.content.start].lines().count();
+            let now = match render(&block.spec, is_inline(&text, block)) {
+                Ok(now) => now,
+                Err(e) if e.message.starts_with(UNRECORDED) => {
+                    unchecked.push(format!("{shown}:{line}: `{}`", block.spec));
+                    was.to_string()
+                }
+                Err(e) => return Err(Failure::new(format!("{shown}:{line}: {}", e.message))),
+            };
             if now != was && !within_layout_slack(&block.spec, was, &now) {
-                let line = text[..block.content.start].lines().count();
                 stale.push(format!(
                     "{shown}:{line}: `{}` is stale\n{}",
                     block.spec,
@@ -100,8 +118,17 @@ pub fn run(args: &Args) -> Result {
             stale.join("\n")
         )));
     }
+    if !unchecked.is_empty() {
+        println!(
+            "xtask docs: {} by-hand figure(s) not recorded here, left as they are \
+             (their tests are #[ignore]d; run them to check these):\n  {}",
+            unchecked.len(),
+            unchecked.join("\n  ")
+        );
+    }
     println!(
-        "xtask docs: {blocks_seen} generated blocks {}",
+        "xtask docs: {} generated blocks {}",
+        blocks_seen - unchecked.len(),
         if args.check { "current" } else { "regenerated" }
     );
     Ok(())
@@ -159,6 +186,7 @@ fn render(spec: &str, inline: bool) -> Result<String> {
     let body = match kind {
         "console" => console(rest.trim())?,
         "value" => value(rest.trim())?,
+        "figure" => figure(rest.trim())?,
         _ => {
             return Err(Failure::new(format!(
                 "unknown generated block `docs:{kind}`"
@@ -336,6 +364,42 @@ fn value(name: &str) -> Result<String> {
         _ => return Err(Failure::new(format!("unknown `docs:value {name}`"))),
     })
 }
+
+/// A figure recorded by the test that measures it (`cuesight_figures::record!`).
+/// `KEY by-hand` (an ignored test's figure) renders as what the docs hold when it is
+/// not recorded: [`run`] counts those as unchecked.
+fn figure(spec: &str) -> Result<String> {
+    let (key, by_hand) = match spec.split_once(' ') {
+        Some((key, "by-hand")) => (key, true),
+        None => (spec, false),
+        Some(_) => {
+            return Err(Failure::new(format!(
+                "`docs:figure {spec}`: expected `KEY` or `KEY by-hand`"
+            )))
+        }
+    };
+    if !cuesight_figures::valid_key(key) {
+        return Err(Failure::new(format!(
+            "`docs:figure {key}`: not a figure key"
+        )));
+    }
+    let path = cuesight_figures::dir().join(key);
+    match std::fs::read_to_string(&path) {
+        Ok(text) => Ok(text.lines().next().unwrap_or_default().to_string()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound && by_hand => {
+            Err(Failure::new(format!("{UNRECORDED}{key}")))
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Err(Failure::new(format!(
+            "figure `{key}` is not recorded ({}): run the tests first (`cargo xtask test`, \
+             or the test that records it: `grep -rn '\"{key}\"' --include=*.rs .`)",
+            path.display()
+        ))),
+        Err(e) => Err(Failure::new(format!("reading {}: {e}", path.display()))),
+    }
+}
+
+/// The start of [`figure`]'s error for a by-hand figure not recorded.
+const UNRECORDED: &str = "unrecorded by-hand figure ";
 
 /// Bytes an image's size may differ between two checkouts of one commit. Cargo hashes
 /// a path dependency's location into its crates' metadata, so the symbols' names and

@@ -54,6 +54,13 @@ struct TestBinary {
 /// (`--all-targets`) has already checked them.
 pub fn run() -> Result {
     let mut binaries = build()?;
+    // The figures the docs quote are recorded afresh by this run: one an older run left
+    // would let `cargo xtask docs --check` pass on a test that no longer records it.
+    let figures = cuesight_figures::dir();
+    if figures.exists() {
+        std::fs::remove_dir_all(&figures)
+            .map_err(|e| Failure::new(format!("removing {}: {e}", figures.display())))?;
+    }
     binaries.sort_by_key(|b| {
         LONGEST_FIRST
             .iter()

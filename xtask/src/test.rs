@@ -110,10 +110,6 @@ const STEPS: &[Step] = &[
         action: demo_session,
     },
     Step {
-        title: "docs: every generated block of README.md and docs/ is current (cargo xtask docs --check)",
-        action: || crate::docs::run(&crate::docs::Args::check()),
-    },
-    Step {
         title: "firmware: end-to-end test in QEMU",
         action: end_to_end,
     },
@@ -124,6 +120,10 @@ const STEPS: &[Step] = &[
     Step {
         title: "firmware: live cue (issue 15): clippy and build of the `live` image, flash within 48 KiB and static RAM within 16 KiB, the shipped IMU traces through it in QEMU against their truth and the host's guidance",
         action: live_cue,
+    },
+    Step {
+        title: "docs: every generated block of README.md and docs/ is current, the figures the tests above recorded included (cargo xtask docs --check)",
+        action: || crate::docs::run(&crate::docs::Args::check()),
     },
     Step {
         title: "bench-firmware: fmt, clippy, KimGrip f32 disassembly (vsqrt.f32, no soft f64), instruction count within 5 % of the baseline",

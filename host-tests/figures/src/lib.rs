@@ -1,0 +1,103 @@
+//! The figures `README.md` and `docs/` quote, recorded by the tests that measure them.
+//!
+//! A test that measures a figure the docs quote records it, formatted as the docs
+//! print it:
+//!
+//! ```no_run
+//! let worst_error_pct = 0.7412_f64;
+//! cuesight_figures::record!("sensors-speed-error-max", "{worst_error_pct:.2}");
+//! ```
+//!
+//! and the docs hold it in a generated block,
+//! `<!-- docs:figure sensors-speed-error-max -->0.74<!-- /docs -->`. `cargo xtask docs`
+//! writes the recorded value there; `cargo xtask docs --check` (a CI step, after every
+//! step that runs tests) fails when the docs and the recording differ. So a figure
+//! cannot drift from the code that measures it: a change that moves it fails CI until
+//! the docs are regenerated.
+//!
+//! Each figure is a file `target/figures/KEY` (or under `$CUESIGHT_FIGURES_DIR`): the
+//! value on its first line, the command that records it on its second (`cargo test -p
+//! PACKAGE --test TARGET -- TEST --exact`), which `cargo xtask docs` names when a figure
+//! is missing. Keys are lowercase ASCII letters, digits and `-`.
+//!
+//! Only figures that the same code gives on every machine belong here: counts, errors
+//! against a reference, sizes, instruction counts. A wall time or a rate is a
+//! measurement of the machine and stays prose naming its command.
+
+use std::fmt::Display;
+use std::path::PathBuf;
+
+/// Records a figure: `record!(KEY, FORMAT, ARGS...)` formats as `format!` does.
+/// The caller's package and test target name the command that records it.
+#[macro_export]
+macro_rules! record {
+    ($key:expr, $($format:tt)+) => {
+        $crate::record_from(
+            env!("CARGO_PKG_NAME"),
+            env!("CARGO_CRATE_NAME"),
+            $key,
+            &format!($($format)+),
+        )
+    };
+}
+
+/// Where figures are kept: `$CUESIGHT_FIGURES_DIR`, else `target/figures` at the
+/// workspace root.
+pub fn dir() -> PathBuf {
+    match std::env::var_os("CUESIGHT_FIGURES_DIR") {
+        Some(dir) => PathBuf::from(dir),
+        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../target/figures"),
+    }
+}
+
+/// Whether `key` is a valid figure name (lowercase ASCII letters, digits, `-`).
+pub fn valid_key(key: &str) -> bool {
+    !key.is_empty()
+        && key
+            .bytes()
+            .all(|b| b.is_ascii_lowercase() || b.is_ascii_digit() || b == b'-')
+}
+
+/// [`record!`]'s body. Panics (it runs in tests) on an invalid key, a value with a line
+/// break, or a file it cannot write: a figure that silently went unrecorded would let
+/// `--check` compare against an old one.
+pub fn record_from(package: &str, target: &str, key: &str, value: &dyn Display) {
+    assert!(valid_key(key), "figure key {key:?}: use a-z, 0-9 and -");
+    let value = value.to_string();
+    assert!(
+        !value.contains('\n') && !value.is_empty(),
+        "figure {key}: {value:?} must be one non-empty line"
+    );
+    let thread = std::thread::current();
+    let test = thread.name().unwrap_or("main");
+    let command = if target == package.replace('-', "_") {
+        format!("cargo test -p {package} --lib -- {test} --exact")
+    } else {
+        format!("cargo test -p {package} --test {target} -- {test} --exact")
+    };
+    let dir = dir();
+    let write = std::fs::create_dir_all(&dir).and_then(|()| {
+        // Written whole then renamed: two test threads never leave a torn file.
+        let temporary = dir.join(format!(".{key}.{}", std::process::id()));
+        std::fs::write(&temporary, format!("{value}\n{command}\n"))?;
+        std::fs::rename(&temporary, dir.join(key))
+    });
+    if let Err(e) = write {
+        panic!("figure {key}: writing {}: {e}", dir.display());
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keys() {
+        assert!(valid_key("sensors-speed-error-max"));
+        assert!(valid_key("e2e-frames-2"));
+        assert!(!valid_key(""));
+        assert!(!valid_key("Speed"));
+        assert!(!valid_key("a/b"));
+        assert!(!valid_key("a b"));
+    }
+}
