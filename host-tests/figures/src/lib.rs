@@ -17,8 +17,8 @@
 //!
 //! Each figure is a file `target/figures/KEY` (or under `$CUESIGHT_FIGURES_DIR`): the
 //! value on its first line, the command that records it on its second (`cargo test -p
-//! PACKAGE --test TARGET -- TEST --exact`), which `cargo xtask docs` names when a figure
-//! is missing. Keys are lowercase ASCII letters, digits and `-`.
+//! PACKAGE --test TARGET -- TEST --exact`, or an example's or binary's `cargo run`
+//! command line). Keys are lowercase ASCII letters, digits and `-`.
 //!
 //! Only figures that the same code gives on every machine belong here: counts, errors
 //! against a reference, sizes, instruction counts. A wall time or a rate is a
@@ -35,6 +35,7 @@ macro_rules! record {
         $crate::record_from(
             env!("CARGO_PKG_NAME"),
             env!("CARGO_CRATE_NAME"),
+            option_env!("CARGO_BIN_NAME").is_some(),
             $key,
             &format!($($format)+),
         )
@@ -61,7 +62,10 @@ pub fn valid_key(key: &str) -> bool {
 /// [`record!`]'s body. Panics (it runs in tests) on an invalid key, a value with a line
 /// break, or a file it cannot write: a figure that silently went unrecorded would let
 /// `--check` compare against an old one.
-pub fn record_from(package: &str, target: &str, key: &str, value: &dyn Display) {
+///
+/// `runnable` is a binary or an example (`cargo run`): the command is then its own
+/// command line, arguments included; otherwise a test's, from its thread's name.
+pub fn record_from(package: &str, target: &str, runnable: bool, key: &str, value: &dyn Display) {
     assert!(valid_key(key), "figure key {key:?}: use a-z, 0-9 and -");
     let value = value.to_string();
     assert!(
@@ -70,7 +74,19 @@ pub fn record_from(package: &str, target: &str, key: &str, value: &dyn Display) 
     );
     let thread = std::thread::current();
     let test = thread.name().unwrap_or("main");
-    let command = if target == package.replace('-', "_") {
+    let command = if runnable {
+        let exe = std::env::current_exe().unwrap_or_default();
+        let kind = if exe.components().any(|c| c.as_os_str() == "examples") {
+            "--example"
+        } else {
+            "--bin"
+        };
+        let args: Vec<String> = std::env::args().skip(1).collect();
+        format!(
+            "cargo run --release -p {package} {kind} {target} -- {}",
+            args.join(" ")
+        )
+    } else if target == package.replace('-', "_") {
         format!("cargo test -p {package} --lib -- {test} --exact")
     } else {
         format!("cargo test -p {package} --test {target} -- {test} --exact")
