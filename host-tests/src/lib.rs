@@ -1,9 +1,7 @@
-//! Host side of cuesight (std): the f64 first-principles reference solver and helpers
-//! shared by the CLI and the test suites.
-pub mod calibrate;
-pub mod cli;
+//! Host side of cuesight (std): the f64 first-principles reference solver, the QEMU
+//! harness and the helpers the test suites share. The `cuesight` CLI that uses them is
+//! `cuesight-cli` (`cli/`).
 pub mod compare;
-pub mod device;
 pub mod domain;
 pub mod firmware;
 pub mod grid;
@@ -11,9 +9,6 @@ pub mod invariants;
 pub mod live;
 pub mod live_trace;
 pub mod reference;
-pub mod report;
-pub mod shot_cli;
 pub mod shot_scenes;
 pub mod strokes;
-pub mod svg;
 pub mod timed;

@@ -1,12 +1,12 @@
 //! `calibrate`: the friction-law fit, the JSON text `cuesight calibrate --json` prints
-//! ([`cuesight_host::calibrate`]: `run` for a file, `run_points` for points given as
+//! ([`cuesight_cli::calibrate`]: `run` for a file, `run_points` for points given as
 //! the JSON point schema, read by the CLI's `parse_json`).
 
 use std::path::PathBuf;
 
 use clap::ValueEnum;
-use cuesight_host::calibrate::input::parse_json;
-use cuesight_host::calibrate::{
+use cuesight_cli::calibrate::input::parse_json;
+use cuesight_cli::calibrate::{
     run, run_points, CalibrateError, FitKind, Flags, Intervals, Solver,
 };
 use pyo3::prelude::*;
@@ -44,7 +44,7 @@ fn value<T: ValueEnum>(flag: &str, name: &str) -> Result<T, CalibrateError> {
 /// point `i` on line `i` (1-based), so that a point's error, which serde_json places at
 /// a line and column, names the point: `throw list: point 3: cut_deg = 95 is outside
 /// [0, 90) degrees`.
-fn read_points(points: &[String]) -> Result<Vec<cuesight_host::calibrate::Measurement>, String> {
+fn read_points(points: &[String]) -> Result<Vec<cuesight_cli::calibrate::Measurement>, String> {
     let text = format!("[{}]", points.join(",\n"));
     parse_json(&text).map_err(|e| {
         let message = e.to_string();
@@ -100,7 +100,7 @@ pub(crate) fn _calibrate(
             }
             Throw::Points(points) => {
                 // The flags are checked before the points are read, as `run` does.
-                cuesight_host::calibrate::options(&flags)?;
+                cuesight_cli::calibrate::options(&flags)?;
                 let points =
                     read_points(&points).map_err(|message| CalibrateError { message, code: 1 })?;
                 run_points(&points, &flags, LIST_SOURCE)

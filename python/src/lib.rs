@@ -2,13 +2,13 @@
 //! (`cuesight/__init__.py`) turns its plain dicts and arrays into typed results.
 //!
 //! Nothing here predicts anything by itself: every function calls the `cuesight` CLI's
-//! own code in `cuesight-host` (`host-tests/`), without its argument parsing, so that
+//! own code in `cuesight-cli` (`cli/`), without its argument parsing, so that
 //! Python and the CLI cannot drift apart:
 //!
-//! * [`single`], [`many`]: `cuesight collide` ([`cuesight_host::cli::collide_within`],
+//! * [`single`], [`many`]: `cuesight collide` ([`cuesight_cli::cli::collide_within`],
 //!   `tip_spin`, `parse_model`), one scene or arrays of them;
-//! * [`shot`]: `cuesight shot --json` ([`cuesight_host::shot_cli`]);
-//! * [`calibrate`]: `cuesight calibrate --json` ([`cuesight_host::calibrate`]).
+//! * [`shot`]: `cuesight shot --json` ([`cuesight_cli::shot_cli`]);
+//! * [`calibrate`]: `cuesight calibrate --json` ([`cuesight_cli::calibrate`]).
 //!
 //! Numbers keep the engine's precision: `collide` gives its f32 results widened to
 //! Python floats exactly; `shot` and `calibrate` give the CLI's JSON text, which

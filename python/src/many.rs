@@ -3,8 +3,8 @@
 //! the CLI run for it.
 
 use cuesight::Regime;
-use cuesight_host::cli::AutoPick;
-use cuesight_host::report::Report;
+use cuesight_cli::cli::AutoPick;
+use cuesight_cli::report::Report;
 use cuesight_link::ModelName;
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;

@@ -1,12 +1,12 @@
 //! One `cuesight collide` request from Python's arguments, and its prediction by the
-//! CLI's own functions ([`cuesight_host::cli`]): [`parse_model`], [`tip_spin`] (`--tip`)
+//! CLI's own functions ([`cuesight_cli::cli`]): [`parse_model`], [`tip_spin`] (`--tip`)
 //! and [`collide_within`] (the link's `Collide::prepare` from the pool defaults, the
 //! core's `collide` or the f64 reference solver, `select_model` for `auto`).
 
 use std::sync::{Mutex, MutexGuard};
 
-use cuesight_host::cli::{collide_within, parse_model, tip_spin, AutoPick, CliError};
-use cuesight_host::report::Report;
+use cuesight_cli::cli::{collide_within, parse_model, tip_spin, AutoPick, CliError};
+use cuesight_cli::report::Report;
 use cuesight_link::{Collide, ModelName};
 
 /// A `model` name, as `cuesight collide --model` reads it; the error is the CLI's, for

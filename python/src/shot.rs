@@ -1,12 +1,12 @@
 //! `shot`: shot guidance, the JSON text `cuesight shot --json` prints
-//! ([`cuesight_host::shot_cli`]: the scene file and the flags merged by
+//! ([`cuesight_cli::shot_cli`]: the scene file and the flags merged by
 //! `Request::from_parts`, played by `play_request`, serialized by `to_json`).
 
 use std::path::PathBuf;
 
 use clap::ValueEnum;
-use cuesight_host::shot_cli::input::{parse_model, PocketRef, SceneFile, TablePreset};
-use cuesight_host::shot_cli::{play_request, to_json, Flags, Request, ShotError};
+use cuesight_cli::shot_cli::input::{parse_model, PocketRef, SceneFile, TablePreset};
+use cuesight_cli::shot_cli::{play_request, to_json, Flags, Request, ShotError};
 use pyo3::prelude::*;
 
 use crate::value_error;
@@ -126,7 +126,7 @@ fn play(scene: Option<Scene>, mut flags: Flags) -> Result<String, ShotError> {
     let svg = flags.svg.take();
     let played = play_request(Request::from_parts(&file, &flags)?)?;
     if let Some(path) = svg {
-        std::fs::write(&path, cuesight_host::svg::render(&played))
+        std::fs::write(&path, cuesight_cli::svg::render(&played))
             .map_err(|e| ShotError::invalid(format!("svg file {}: {e}", path.display())))?;
     }
     Ok(to_json(&played.report))

@@ -1,7 +1,7 @@
 //! `collide`: one collision, the dict of `cuesight collide --json`.
 
-use cuesight_host::cli::{AutoPick, CliError};
-use cuesight_host::report::Report;
+use cuesight_cli::cli::{AutoPick, CliError};
+use cuesight_cli::report::Report;
 use cuesight_link::ModelName;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;

@@ -24,7 +24,7 @@ REPO = Path(__file__).resolve().parents[2]
 
 def _build_cli() -> Optional[Path]:
     cargo = shutil.which("cargo")
-    if cargo is None or not (REPO / "host-tests").is_dir():
+    if cargo is None or not (REPO / "cli").is_dir():
         return None
     subprocess.run(
         [cargo, "build", "-q", "--bin", "cuesight"],

@@ -1,5 +1,5 @@
 """``cuesight.shot`` against the CLI: the dict is the JSON ``cuesight shot --json``
-prints for the same scene file and flags (scene files of host-tests/scenes, the same
+prints for the same scene file and flags (scene files of cli/scenes, the same
 scenes as dicts, flags over them, no scene at all), the drawing is ``--svg``'s, and an
 invalid shot raises ValueError with the CLI's message."""
 
@@ -15,7 +15,7 @@ import cuesight
 
 from conftest import REPO, f32_text
 
-SCENES = REPO / "host-tests" / "scenes"
+SCENES = REPO / "cli" / "scenes"
 TOML = sorted(SCENES.glob("*.toml"))
 JSON = sorted(SCENES.glob("*.json"))
 

@@ -7,8 +7,9 @@
 //! pip builds the extension into `<target>/python/cargo` (`CARGO_TARGET_DIR`), so
 //! nothing is written inside `python/` and a second run reuses the first's build, and
 //! clippy lints the package's crate in that build (`tools::lint_while_building`). The extension
-//! depends on `cuesight-host` (the CLI's code: `shot`, `calibrate`, the reference
-//! solver), so that build includes the host crate and its dependencies: about 165 s
+//! depends on `cuesight-cli` (the CLI's code: `shot`, `calibrate`, and through it the
+//! reference solver of `cuesight-host`), so that build includes both crates and their
+//! dependencies: about 165 s
 //! cold, 34 s warm on 2 shared cores. The calibration tests read the shared
 //! measured-throw set from `../shared` beside the repository (skipped, saying so,
 //! without it).
@@ -83,7 +84,7 @@ fn venv_python() -> Result<PathBuf> {
 }
 
 /// The `cuesight` CLI the tests compare with, built if it is not (the debug profile, as
-/// "host: tests" leaves it). `--workspace`, not `-p cuesight-host`: the features are
+/// "host: tests" leaves it). `--workspace`, not `-p cuesight-cli`: the features are
 /// then the ones "host: tests" built the binary with, so after that step this is a
 /// no-op, where `-p` resolved other features (no `schema` on core, link and sensors)
 /// and rebuilt core, link, sensors and the CLI (57 s of a bare-machine CI run).

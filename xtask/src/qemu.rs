@@ -1,5 +1,5 @@
 //! Boot the firmware in QEMU and talk to it through the device console
-//! (`cuesight_host::device`, what `cuesight device --qemu` runs): a scripted session
+//! (`cuesight_cli::device`, what `cuesight device --qemu` runs): a scripted session
 //! (`cargo xtask run`, the demo `firmware/demo/session.jsonl` or `--session FILE`), or
 //! requests typed by a person (`cargo xtask run --interactive`).
 //!
@@ -16,9 +16,9 @@ use std::io::{self, IsTerminal};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use cuesight_host::device::session::{play, Console, DeviceError, Reply, Show, Tally};
-use cuesight_host::device::text::Summary;
-use cuesight_host::device::transport::{Qemu, TransportError};
+use cuesight_cli::device::session::{play, Console, DeviceError, Reply, Show, Tally};
+use cuesight_cli::device::text::Summary;
+use cuesight_cli::device::transport::{Qemu, TransportError};
 use cuesight_host::firmware::{qemu_command, Ended, Firmware};
 use cuesight_link::{Request, Response};
 
@@ -71,7 +71,7 @@ fn boot(elf: &Path) -> Result<Qemu> {
     Ok(Qemu::new(fw))
 }
 
-/// Plays `session` (the console's session format, `cuesight_host::device::session`)
+/// Plays `session` (the console's session format, `cuesight_cli::device::session`)
 /// against the firmware and prints each request with a one-line summary of its answer,
 /// then the firmware's log. Fails on an error answer the file did not mark expected (or
 /// a marked line that got none, or a line that is no request), a schema mismatch, a

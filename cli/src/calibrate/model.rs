@@ -5,7 +5,7 @@ use cuesight::{FrictionLaw, Impact, Model, Params};
 use glam::DVec3;
 
 use super::input::{Measurement, Spin};
-use crate::reference::{self, ReferenceConfig, ReferenceParams};
+use cuesight_host::reference::{self, ReferenceConfig, ReferenceParams};
 
 /// Which parameters are fitted.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]

@@ -69,7 +69,7 @@ impl FitOptions {
             max_evaluations: 100_000,
             progress: false,
             intervals: Intervals::Profile,
-            compliant_steps: crate::reference::ReferenceConfig::default().steps,
+            compliant_steps: cuesight_host::reference::ReferenceConfig::default().steps,
         }
     }
 }

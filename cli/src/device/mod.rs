@@ -37,7 +37,7 @@ use std::time::Duration;
 
 use cuesight_link::{Request, Response};
 
-use crate::firmware::{self, Ended, Firmware};
+use cuesight_host::firmware::{self, Ended, Firmware};
 use session::{play, Console, DeviceError, Reply, Show, Tally};
 use text::Summary;
 use transport::{Loopback, Qemu, Stream, Transport};

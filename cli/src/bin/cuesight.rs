@@ -1,14 +1,14 @@
 //! `cuesight` command line: predict what happens when a spinning cue ball hits a
 //! resting object ball. The clap interface lives here; the logic in
-//! [`cuesight_host::cli`].
+//! [`cuesight_cli::cli`].
 
 use std::io::Write;
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
-use cuesight_host::calibrate::ParamsFile;
-use cuesight_host::cli;
-use cuesight_host::report;
+use cuesight_cli::calibrate::ParamsFile;
+use cuesight_cli::cli;
+use cuesight_cli::report;
 use cuesight_link::{Collide, ModelName};
 
 /// Predict what happens when a spinning cue ball hits a resting object ball.
@@ -35,7 +35,7 @@ enum Command {
     /// pocket and no aim, solves the aim (throw included) and reports its correction
     /// against the ghost-ball aim; with --aim, plays it. Exit codes: 0 ok, 1 invalid
     /// value or no aim found, 2 usage error. See docs/shot-cli.md.
-    Shot(cuesight_host::shot_cli::Flags),
+    Shot(cuesight_cli::shot_cli::Flags),
     /// Talk to a cuesight device: requests as JSON lines in, one answer per request out.
     ///
     /// Reads requests (the link's JSON, e.g. {"collide":{"speed":2,"cut":30}}; see
@@ -45,7 +45,7 @@ enum Command {
     /// comments, `!expect-error ` before a request whose answer must be an error. Exit
     /// codes: 0 ok, 1 unexpected error answers (listed at the end), 2 usage, 3 link
     /// failure, 4 schema mismatch.
-    Device(cuesight_host::device::Flags),
+    Device(cuesight_cli::device::Flags),
     /// Fit the ball–ball friction law (and e*) to measured throw.
     ///
     /// Reads measured throw (JSON or CSV, see docs/calibration.md), fits
@@ -54,7 +54,7 @@ enum Command {
     /// uncertainties, per-point residuals and the RMS; --json prints one object that
     /// `collide --params` and `shot --params` read. Exit codes: 0 ok, 1 bad data or no
     /// convergence, 2 usage error.
-    Calibrate(cuesight_host::calibrate::Flags),
+    Calibrate(cuesight_cli::calibrate::Flags),
 }
 
 #[derive(Args)]
@@ -139,9 +139,9 @@ fn main() -> ExitCode {
     };
     let args = match parsed.command {
         Command::Collide(args) => args,
-        Command::Shot(flags) => return cuesight_host::shot_cli::main(&flags),
-        Command::Device(flags) => return cuesight_host::device::main(&flags),
-        Command::Calibrate(flags) => return cuesight_host::calibrate::main(&flags),
+        Command::Shot(flags) => return cuesight_cli::shot_cli::main(&flags),
+        Command::Device(flags) => return cuesight_cli::device::main(&flags),
+        Command::Calibrate(flags) => return cuesight_cli::calibrate::main(&flags),
     };
     // Flags override the --params file; what neither gives is the pool default.
     let file = match &args.params {

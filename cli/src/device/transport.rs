@@ -4,7 +4,7 @@
 //!   `serialport` crate) or a TCP socket ([`Stream::tcp`], e.g. QEMU's
 //!   `-serial tcp::PORT,server`). Frames are cut by a [`FrameReader`], which never keeps
 //!   more than `MAX_RAW` bytes of one.
-//! * [`Qemu`]: the firmware booted under QEMU ([`crate::firmware::Firmware`]).
+//! * [`Qemu`]: the firmware booted under QEMU ([`cuesight_host::firmware::Firmware`]).
 //! * [`Loopback`]: a device in this process ([`cuesight_device::Session`]), for trying the
 //!   console and for tests.
 
@@ -17,7 +17,7 @@ use std::time::{Duration, Instant};
 use cuesight_device::{Control, Identity, Session};
 use cuesight_link::frame::{FrameReader, MAX_FRAME};
 
-use crate::firmware::{Firmware, FirmwareError, Incoming};
+use cuesight_host::firmware::{Firmware, FirmwareError, Incoming};
 
 /// Why a transport could not move a frame.
 #[derive(Debug)]

@@ -2,7 +2,7 @@
 
 use std::process::Command;
 
-use cuesight_host::calibrate::read_file;
+use cuesight_cli::calibrate::read_file;
 use serde_json::Value;
 
 use super::{cuesight, shared_set, temp_file};

@@ -362,7 +362,7 @@ fn a_scene_fifo_without_end_is_refused_within_a_second() {
 
 #[test]
 fn console_lines_are_bounded() {
-    use cuesight_host::device::session::{bounded_lines, MAX_LINE_BYTES};
+    use cuesight_cli::device::session::{bounded_lines, MAX_LINE_BYTES};
     let lines = |text: &[u8]| -> Vec<Result<String, String>> {
         bounded_lines(text)
             .map(|l| l.map_err(|e| e.to_string()))

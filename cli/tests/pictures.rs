@@ -3,7 +3,7 @@
 //! for what makes a picture unreadable: a label that leaves the canvas, labels that
 //! overlap, a picture that renders (nearly) blank, text that renders without a font.
 //!
-//! `cargo test -p cuesight-host --test pictures` (part of `cargo xtask test`'s host
+//! `cargo test -p cuesight-cli --test pictures` (part of `cargo xtask test`'s host
 //! tests). Fonts: the system's, `sans-serif` mapped to DejaVu Sans when installed.
 
 use std::path::{Path, PathBuf};
@@ -113,7 +113,7 @@ fn shot_drawing_key_labels_do_not_overlap() {
     let path = std::env::temp_dir().join(format!("cuesight-pictures-{}.svg", std::process::id()));
     let status = Command::new(env!("CARGO_BIN_EXE_cuesight"))
         .args(["shot", "--scene"])
-        .arg(root().join("host-tests/scenes/cut_to_corner.toml"))
+        .arg(root().join("cli/scenes/cut_to_corner.toml"))
         .arg("--svg")
         .arg(&path)
         .output()

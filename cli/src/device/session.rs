@@ -25,7 +25,7 @@ use cuesight_link::{frame, LinkError, Request, Response, VersionAnswer, SCHEMA_H
 
 use super::text::{Schema, Summary, Unreadable};
 use super::transport::{Transport, TransportError};
-use crate::firmware::{open_answer, FirmwareError};
+use cuesight_host::firmware::{open_answer, FirmwareError};
 
 /// The marker of a request whose answer must be an error.
 pub const EXPECT_ERROR: &str = "!expect-error ";

@@ -285,7 +285,7 @@ pub struct AutoPick {
 fn reference_collide(params: &Params, impact: &Impact) -> Result<Outcome, CliError> {
     let previous_hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(|_| {}));
-    let result = std::panic::catch_unwind(|| crate::reference::collide(params, impact));
+    let result = std::panic::catch_unwind(|| cuesight_host::reference::collide(params, impact));
     std::panic::set_hook(previous_hook);
     match result {
         Ok(outcome) if outcome.is_finite() => Ok(outcome),

@@ -2,7 +2,7 @@
 //! (`recovery`), the fit on the shared calibration set (`shared`), every bad-input class
 //! (`bad_input`), and the CLI (`--json`, `--params` round trips into `collide`; `cli`).
 //!
-//! Figures: `cargo test -p cuesight-host --release --test calibrate -- --nocapture`.
+//! Figures: `cargo test -p cuesight-cli --release --test calibrate -- --nocapture`.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

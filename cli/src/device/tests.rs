@@ -9,8 +9,8 @@ use cuesight_link::{LinkError, Response, SCHEMA_HASH};
 
 use super::session::{parse_line, play, Console, DeviceError, Line, Show, Tally};
 use super::transport::{Loopback, Transport, TransportError};
-use crate::firmware::Incoming;
-use crate::strokes::{stroke_requests, synthetic_stroke_of};
+use cuesight_host::firmware::Incoming;
+use cuesight_host::strokes::{stroke_requests, synthetic_stroke_of};
 
 const TIMEOUT: Duration = Duration::from_secs(1);
 
@@ -324,7 +324,7 @@ fn tcp_device(prefix: Vec<u8>) -> std::net::SocketAddr {
                 match device.next_frame(Duration::ZERO) {
                     Ok(Incoming::Frame(raw)) => {
                         if socket
-                            .write_all(&crate::firmware::cobs_frame(&raw))
+                            .write_all(&cuesight_host::firmware::cobs_frame(&raw))
                             .is_err()
                         {
                             return;

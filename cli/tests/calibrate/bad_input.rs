@@ -1,8 +1,8 @@
 //! Every bad-input class, through the library.
 
-use cuesight_host::calibrate::fit::stun;
-use cuesight_host::calibrate::input::{parse_csv, parse_json};
-use cuesight_host::calibrate::{fit, read_file, FitKind, FitOptions, Measurement};
+use cuesight_cli::calibrate::fit::stun;
+use cuesight_cli::calibrate::input::{parse_csv, parse_json};
+use cuesight_cli::calibrate::{fit, read_file, FitKind, FitOptions, Measurement};
 
 use super::{shared_set, temp_file};
 

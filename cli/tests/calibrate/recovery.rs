@@ -1,8 +1,8 @@
 //! Recovery of known parameters: synthetic throw from the reference solver plus noise,
 //! fitted, and each parameter's 95 % interval checked against the truth.
 
-use cuesight_host::calibrate::fit::{model_throw, stun};
-use cuesight_host::calibrate::{fit, FitKind, FitOptions, Intervals, Measurement, Physics, Solver};
+use cuesight_cli::calibrate::fit::{model_throw, stun};
+use cuesight_cli::calibrate::{fit, FitKind, FitOptions, Intervals, Measurement, Physics, Solver};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 

@@ -1,6 +1,6 @@
 //! The fit on the shared calibration set and its cross-validation.
 
-use cuesight_host::calibrate::{
+use cuesight_cli::calibrate::{
     cross_validate, fit, read_file, FitKind, FitOptions, Intervals, Solver,
 };
 
@@ -18,7 +18,7 @@ fn thread_cpu_seconds() -> Option<f64> {
     Some((ticks(11)? + ticks(12)?) / 100.0)
 }
 
-fn shared_fit(kind: FitKind, solver: Solver) -> cuesight_host::calibrate::Fit {
+fn shared_fit(kind: FitKind, solver: Solver) -> cuesight_cli::calibrate::Fit {
     shared_fit_with(kind, solver, Intervals::Profile)
 }
 
@@ -26,7 +26,7 @@ fn shared_fit_with(
     kind: FitKind,
     solver: Solver,
     intervals: Intervals,
-) -> cuesight_host::calibrate::Fit {
+) -> cuesight_cli::calibrate::Fit {
     let points = read_file(&shared_set()).unwrap();
     let mut options = FitOptions::new(kind);
     options.solver = solver;
@@ -134,11 +134,11 @@ fn constant_mu_profile_interval_ends_where_chi2_rises_by_t_squared() {
     let points = read_file(&shared_set()).unwrap();
     let f = shared_fit(FitKind::Mu, Solver::KimGrip);
     let chi2 = |mu: f64| -> f64 {
-        let physics = cuesight_host::calibrate::Physics { mu, ..f.physics };
+        let physics = cuesight_cli::calibrate::Physics { mu, ..f.physics };
         points
             .iter()
             .map(|m| {
-                let t = cuesight_host::calibrate::fit::model_throw(Solver::KimGrip, &physics, m)
+                let t = cuesight_cli::calibrate::fit::model_throw(Solver::KimGrip, &physics, m)
                     .unwrap();
                 (t - m.throw_deg).powi(2)
             })
@@ -174,8 +174,8 @@ fn mu_v_profile_interval_of_mu_ends_at_its_bound() {
 /// finds nothing lower — and e* = 0.95 is fixed: only a lower e* lowers it.
 #[test]
 fn mu_v_fit_is_the_global_optimum_on_the_shared_set() {
-    use cuesight_host::calibrate::fit::model_throw;
-    use cuesight_host::calibrate::Physics;
+    use cuesight_cli::calibrate::fit::model_throw;
+    use cuesight_cli::calibrate::Physics;
     let points = read_file(&shared_set()).unwrap();
     let rms = |physics: &Physics| -> f64 {
         let sum: f64 = points
@@ -262,14 +262,14 @@ fn mu_v_k_reaches_points_above_the_rigid_ceiling() {
 #[test]
 fn compliance_needs_the_reference_solver() {
     let points = read_file(&shared_set()).unwrap();
-    let physics = cuesight_host::calibrate::Physics {
+    let physics = cuesight_cli::calibrate::Physics {
         tangential_stiffness: Some(0.7),
-        ..cuesight_host::calibrate::Physics::pool()
+        ..cuesight_cli::calibrate::Physics::pool()
     };
-    let e = cuesight_host::calibrate::fit::model_throw(Solver::KimGrip, &physics, &points[0])
+    let e = cuesight_cli::calibrate::fit::model_throw(Solver::KimGrip, &physics, &points[0])
         .unwrap_err();
     assert!(e.contains("--model reference"), "{e}");
     assert!(
-        cuesight_host::calibrate::fit::model_throw(Solver::Reference, &physics, &points[0]).is_ok()
+        cuesight_cli::calibrate::fit::model_throw(Solver::Reference, &physics, &points[0]).is_ok()
     );
 }
