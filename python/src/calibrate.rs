@@ -6,9 +6,7 @@ use std::path::PathBuf;
 
 use clap::ValueEnum;
 use cuesight_cli::calibrate::input::parse_json;
-use cuesight_cli::calibrate::{
-    run, run_points, CalibrateError, FitKind, Flags, Intervals, Solver,
-};
+use cuesight_cli::calibrate::{run, run_points, CalibrateError, FitKind, Flags, Intervals, Solver};
 use pyo3::prelude::*;
 
 use crate::value_error;
