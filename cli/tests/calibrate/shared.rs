@@ -18,6 +18,46 @@ fn thread_cpu_seconds() -> Option<f64> {
     Some((ticks(11)? + ticks(12)?) / 100.0)
 }
 
+/// `x` with `decimals` decimals, or as an integer when they are all zero (an interval
+/// that ends at a bound: `[0, 0.0454]`, `[0.675, 1]`), as docs/calibration.md prints it.
+fn figure(x: f64, decimals: usize) -> String {
+    let text = format!("{x:.decimals$}");
+    if text.contains('.') && text.trim_end_matches('0').ends_with('.') {
+        format!("{x:.0}")
+    } else {
+        text
+    }
+}
+
+/// Records a fit's row of the table of docs/calibration.md §3 (`calibration-KIND-…`):
+/// each fitted parameter as `value [lower, upper]` (its 95 % interval), the RMS and the
+/// worst point (`max`, with its series and cut).
+fn record_row(kind: &str, f: &cuesight_cli::calibrate::Fit) {
+    for e in &f.estimates {
+        let decimals = if e.name == "mu_c" || e.name == "restitution" {
+            3
+        } else {
+            4
+        };
+        cuesight_figures::record!(
+            &format!("calibration-{kind}-{}", e.name.replace('_', "-")),
+            "{} [{}, {}]",
+            figure(e.value, decimals),
+            figure(e.lower, decimals),
+            figure(e.upper, decimals)
+        );
+    }
+    let worst = &f.points[f.max_deg.1].measurement;
+    cuesight_figures::record!(&format!("calibration-{kind}-rms"), "{:.3}°", f.rms_deg);
+    cuesight_figures::record!(
+        &format!("calibration-{kind}-max"),
+        "{:.2}° ({} {:.0}°)",
+        f.max_deg.0,
+        worst.series,
+        worst.cut_deg
+    );
+}
+
 fn shared_fit(kind: FitKind, solver: Solver) -> cuesight_cli::calibrate::Fit {
     shared_fit_with(kind, solver, Intervals::Profile)
 }
@@ -39,6 +79,7 @@ fn shared_set_constant_mu_is_the_issues_best_constant() {
     // Issue 19 (with the Exact model): best constant μ 0.0696, 0.98° RMS.
     let f = shared_fit(FitKind::Mu, Solver::KimGrip);
     println!("constant mu {:.5}, rms {:.4}", f.physics.mu, f.rms_deg);
+    record_row("mu", &f);
     assert!((f.physics.mu - 0.0696).abs() < 5e-4, "{}", f.physics.mu);
     assert!((f.rms_deg - 0.98).abs() < 5e-3, "{}", f.rms_deg);
 }
@@ -102,6 +143,7 @@ fn shared_set_mu_v_e_reaches_0_45_deg() {
         f.rms_deg,
         f.max_deg.0
     );
+    record_row("mu-v-e", &f);
     assert!(f.rms_deg <= 0.45, "{}", f.rms_deg);
 }
 
@@ -160,6 +202,7 @@ fn constant_mu_profile_interval_ends_where_chi2_rises_by_t_squared() {
 #[test]
 fn mu_v_profile_interval_of_mu_ends_at_its_bound() {
     let f = shared_fit(FitKind::MuV, Solver::KimGrip);
+    record_row("mu-v", &f);
     let mu = f.estimates[0];
     assert_eq!(mu.lower, 1e-6, "{mu:?}");
     assert!(mu.value - mu.ci95 < 0.0, "{mu:?}");
