@@ -395,6 +395,11 @@ fn shot_chain_holds_on_the_valid_domain() {
         "{:.1e}",
         f.slip_growth
     );
+    let speed_growth = match f.speed_growth {
+        0.0 => "never".to_owned(),
+        growth => format!("by at most {growth:.1e}"),
+    };
+    cuesight_figures::record!("reliability-shot-chain-speed-growth", "{speed_growth}");
 }
 
 /// A motion state from the valid domain, and the TP A.4 closed forms in f64.
