@@ -222,6 +222,7 @@ fn record(prefix: &str, w: &Worst) {
     cuesight_figures::record!(&key("kim-grip-spare"), "{spare:.1}");
     cuesight_figures::record!(&key("exact-sliding"), "{:.4}", 100.0 * w.exact_sliding);
     cuesight_figures::record!(&key("exact-sliding-cases"), "{}", thousands(w.sliding));
+    cuesight_figures::record!(&key("momentum"), "{:.0e}", w.momentum);
 }
 
 /// `n` with a comma every three digits, as the docs print it.
