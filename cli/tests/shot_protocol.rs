@@ -171,4 +171,21 @@ fn shot_request_answers_as_the_cli() {
     println!("keys only the device's answer has: {device_only:?}");
     println!("keys only the CLI's has: {cli_only:?}");
     assert!(compared >= 90, "only {compared} scenes compared");
+    // The figures docs/protocol.md and docs/reliability.md quote.
+    cuesight_figures::record!("protocol-shot-cli-equal", "{compared}");
+    cuesight_figures::record!("protocol-shot-cli-values", "{}", thousands(values));
+    cuesight_figures::record!("protocol-shot-cli-refused", "{both_refused}");
+}
+
+/// `n` with a comma every three digits, as the docs print it.
+fn thousands(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }

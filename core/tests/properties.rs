@@ -198,6 +198,48 @@ fn report(name: &str, figures: &[(Model, Figures)]) {
     }
 }
 
+/// Records the figures docs/reliability.md quotes (its table of the largest deviations),
+/// as `reliability-properties-MODEL-WHAT`.
+fn record(figures: &[(Model, Figures)]) {
+    fn thousands(n: u64) -> String {
+        let digits = n.to_string();
+        let mut out = String::new();
+        for (i, c) in digits.chars().enumerate() {
+            if i > 0 && (digits.len() - i) % 3 == 0 {
+                out.push(',');
+            }
+            out.push(c);
+        }
+        out
+    }
+    // Two significant digits, and a plain 0 for none at all.
+    let sci = |x: f64| {
+        if x == 0.0 {
+            "0".to_owned()
+        } else {
+            format!("{x:.1e}")
+        }
+    };
+    for (model, f) in figures {
+        let key = |what: &str| format!("reliability-properties-{}-{what}", model.name());
+        cuesight_figures::record!(&key("energy-cases"), "{}", thousands(f.energy_created));
+        cuesight_figures::record!(&key("energy-gain"), "{}", sci(f.energy_gain.value));
+        let gain_pct = 100.0 * f.energy_gain.value;
+        cuesight_figures::record!(&key("energy-gain-pct"), "{gain_pct:.0}");
+        let of_allowance = f.energy_vs_allowance.value;
+        cuesight_figures::record!(&key("energy-allowance"), "{of_allowance:.3}");
+        cuesight_figures::record!(&key("momentum-free"), "{}", sci(f.momentum_free.value));
+        cuesight_figures::record!(&key("momentum-excess"), "{}", sci(f.momentum_excess.value));
+        cuesight_figures::record!(&key("precision"), "{}", sci(f.precision.value));
+        let precision_pct = 100.0 * f.precision.value;
+        cuesight_figures::record!(&key("precision-pct"), "{precision_pct:.1}");
+        let conditioned = thousands(f.precision_conditioned);
+        cuesight_figures::record!(&key("precision-cases"), "{conditioned}");
+        let of_allowance = f.precision_vs_allowance.value;
+        cuesight_figures::record!(&key("precision-allowance"), "{of_allowance:.3}");
+    }
+}
+
 /// Run `cases` cases of `strategy` with a fixed seed through `check` for `models`.
 fn run(
     test_name: &'static str,
@@ -243,6 +285,7 @@ fn closed_forms_hold_on_the_valid_domain() {
         &[|_| Model::Ideal, |_| Model::Kim, |_| Model::KimGrip],
     );
     report("closed forms", &figures);
+    record(&figures);
 }
 
 #[test]
@@ -260,6 +303,7 @@ fn exact_and_auto_hold_on_the_valid_domain() {
         ],
     );
     report("exact and auto", &figures);
+    record(&figures);
 }
 
 #[test]

@@ -92,6 +92,7 @@ fn aim_one_microradian_either_side_of_grazing() {
         }
     }
     println!("grazing aims: {count} shots");
+    cuesight_figures::record!("reliability-shot-extremes-grazing-shots", "{count}");
 }
 
 /// Bisect the aim angle between a hit and a miss to adjacent f32 angles: `play` never
@@ -157,6 +158,7 @@ fn hit_miss_boundary_is_continuous() {
         }
     }
     println!("hit/miss boundary: object-ball speed at the last hit ≤ {worst:.3} of the bound");
+    cuesight_figures::record!("reliability-shot-extremes-hit-miss", "{worst:.2}");
 }
 
 /// The cue ball at `(x₀, y₀)` aimed along `+x`; the object ball at
@@ -269,6 +271,7 @@ fn cut_angle_zero_and_near_ninety_degrees() {
         }
     }
     println!("cut angles: error ≤ {worst:.3} of the rounding allowance");
+    cuesight_figures::record!("reliability-shot-extremes-cut-angles", "{worst:.3}");
 }
 
 /// Stun and zero spin: a centre hit launches with no spin at all; touching the object
@@ -429,6 +432,7 @@ fn tip_offsets_at_the_miscue_limit_and_centre() {
         }
     }
     println!("tip offsets: {played} shots");
+    cuesight_figures::record!("reliability-shot-extremes-tip-shots", "{played}");
 }
 
 /// Cue speeds from the smallest subnormal through 1 mm/s to the 20 m/s limit, every
@@ -627,6 +631,7 @@ fn cue_ball_touching_the_object_ball() {
         }
     }
     println!("touching balls: state change over 1 ulp ≤ {worst:.3} of the bound");
+    cuesight_figures::record!("reliability-shot-extremes-touching", "{worst:.2}");
 }
 
 /// Stop distance (m) of a centre-hit (stun) cue ball from the cue speed, TP A.30 + TP
@@ -698,6 +703,7 @@ fn travel_distance_of_a_table_length() {
         }
     }
     println!("table length: arrival speed at the slowest hit ≤ {worst:.3} of the bound");
+    cuesight_figures::record!("reliability-shot-extremes-table-length", "{worst:.2}");
 }
 
 /// Continuity at the TP 4.1 distance, where the cue ball stops sliding and rolls: the
@@ -767,6 +773,8 @@ fn sliding_to_rolling_is_continuous_at_the_tp_4_1_distance() {
     }
     assert_eq!(switches, 36, "every switch on the table");
     println!("sliding → rolling: {switches} switches, state jump ≤ {worst:.3} of the bound");
+    cuesight_figures::record!("reliability-shot-extremes-rolling-switches", "{switches}");
+    cuesight_figures::record!("reliability-shot-extremes-rolling-jump", "{worst:.2}");
 }
 
 /// `Motion::crossing` and `time_to_reach` across the phase switches (flight → sliding,
@@ -869,6 +877,7 @@ fn crossing_and_time_to_reach_have_no_gap_between_phases() {
             .is_none());
     }
     println!("phase switches: {checked} crossings bisected");
+    cuesight_figures::record!("reliability-shot-extremes-phase-crossings", "{checked}");
 }
 
 /// Subnormal-scale inputs: aim directions with subnormal components (a unit aim in the
@@ -999,6 +1008,7 @@ fn hopping_ball_lands() {
     }
     assert!(lifted > 0, "no played shot lifted a ball");
     println!("hops: {lifted} lifted balls in played shots");
+    cuesight_figures::record!("reliability-shot-extremes-hops", "{lifted}");
 }
 
 /// Balls touching cushions and pockets: the cue ball in a corner touching both
@@ -1286,6 +1296,18 @@ fn mirror_image_of_scene_and_stroke() {
         }
     }
     println!("mirror: {shots} shots, {contacts} contacts, {pocketed} pocketed; positions within {worst:.3} of the bound");
+    cuesight_figures::record!(
+        "reliability-shot-extremes-mirror-shots",
+        "{}",
+        thousands(shots)
+    );
+    cuesight_figures::record!(
+        "reliability-shot-extremes-mirror-contacts",
+        "{}",
+        thousands(contacts)
+    );
+    cuesight_figures::record!("reliability-shot-extremes-mirror-pocketed", "{pocketed}");
+    cuesight_figures::record!("reliability-shot-extremes-mirror-positions", "{worst:.1}");
 }
 
 /// `solve_aim` at the extremes, every pocketed ball set: straight in to every pocket
@@ -1404,4 +1426,29 @@ fn solve_aim_at_the_extremes_and_mirrored() {
         answers[0], answers[1], answers[2], answers[3]
     );
     assert!(answers[0] > 50, "{answers:?}");
+    cuesight_figures::record!("reliability-shot-extremes-aim-solved", "{}", answers[0]);
+    cuesight_figures::record!("reliability-shot-extremes-aim-not-hit", "{}", answers[1]);
+    cuesight_figures::record!(
+        "reliability-shot-extremes-aim-unreachable",
+        "{}",
+        answers[2]
+    );
+    cuesight_figures::record!(
+        "reliability-shot-extremes-aim-not-converged",
+        "{}",
+        answers[3]
+    );
+}
+
+/// `n` with a comma every three digits, as the docs print it.
+fn thousands(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }

@@ -372,6 +372,34 @@ fn shot_chain_holds_on_the_valid_domain() {
         f.contacts > f.shots / 8 && f.pocketed > 0 && f.lifted > 0,
         "{f:?}"
     );
+    // The figures docs/reliability.md quotes.
+    cuesight_figures::record!(
+        "reliability-shot-chain-contacts",
+        "{}",
+        thousands(f.contacts)
+    );
+    cuesight_figures::record!(
+        "reliability-shot-chain-pocketed",
+        "{}",
+        thousands(f.pocketed)
+    );
+    cuesight_figures::record!("reliability-shot-chain-motions", "{}", thousands(f.motions));
+    cuesight_figures::record!("reliability-shot-chain-lifted", "{}", thousands(f.lifted));
+    cuesight_figures::record!(
+        "reliability-shot-chain-energy-gain",
+        "{:.1e}",
+        f.energy_gain
+    );
+    cuesight_figures::record!(
+        "reliability-shot-chain-slip-growth",
+        "{:.1e}",
+        f.slip_growth
+    );
+    let speed_growth = match f.speed_growth {
+        0.0 => "never".to_owned(),
+        growth => format!("by at most {growth:.1e}"),
+    };
+    cuesight_figures::record!("reliability-shot-chain-speed-growth", "{speed_growth}");
 }
 
 /// A motion state from the valid domain, and the TP A.4 closed forms in f64.
@@ -636,6 +664,18 @@ fn travel_matches_f64_closed_forms() {
             String::new()
         }
     );
+    // The figures docs/reliability.md quotes.
+    cuesight_figures::record!(
+        "reliability-shot-travel-conditioned",
+        "{}",
+        thousands(p.conditioned)
+    );
+    let conditioned_pct = 100.0 * p.conditioned as f64 / p.cases as f64;
+    cuesight_figures::record!(
+        "reliability-shot-travel-conditioned-pct",
+        "{conditioned_pct:.1}"
+    );
+    cuesight_figures::record!("reliability-shot-travel-of-drift", "{:.2}", p.of_drift);
 }
 
 /// A shot to solve: pool or snooker, cue and object ball anywhere, the pocket needing
@@ -843,4 +883,35 @@ fn solved_aims_pocket_the_ball() {
         f.not_converged
     );
     assert!(f.solved > f.cases / 2, "{f:?}");
+    // The figures docs/reliability.md quotes.
+    cuesight_figures::record!("reliability-shot-aim-solved", "{}", thousands(f.solved));
+    cuesight_figures::record!("reliability-shot-aim-evaluations", "{}", f.evaluations);
+    cuesight_figures::record!("reliability-shot-aim-not-hit", "{}", thousands(f.not_hit));
+    cuesight_figures::record!(
+        "reliability-shot-aim-unreachable",
+        "{}",
+        thousands(f.unreachable)
+    );
+    cuesight_figures::record!(
+        "reliability-shot-aim-not-converged",
+        "{}",
+        thousands(f.not_converged)
+    );
+    cuesight_figures::record!("reliability-shot-aim-beyond", "{}", thousands(f.beyond));
+    cuesight_figures::record!("reliability-shot-aim-miss-um", "{:.1}", f.worst_miss * 1e6);
+    cuesight_figures::record!("reliability-shot-aim-cot", "{:.0}", f.worst_cot);
+    cuesight_figures::record!("reliability-shot-aim-of-rounding", "{:.3}", f.of_rounding);
+}
+
+/// `n` with a comma every three digits, as the docs print it.
+fn thousands(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }

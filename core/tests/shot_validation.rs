@@ -771,12 +771,14 @@ fn check_rows(rows: Vec<(&'static str, Call, Expect)>) -> usize {
 fn every_invalid_travel_and_table_input_names_its_field() {
     let n = check_rows(travel_and_table_rows());
     assert_eq!(n, 59, "rows");
+    cuesight_figures::record!("reliability-shot-validation-travel-rows", "{n}");
 }
 
 #[test]
 fn every_invalid_shot_aim_and_guidance_input_names_its_field() {
     let n = check_rows(shot_rows());
     assert_eq!(n, 38, "rows");
+    cuesight_figures::record!("reliability-shot-validation-shot-rows", "{n}");
 }
 
 /// The `Display` of an invalid input inside `AimError` is the input error's message.

@@ -726,12 +726,14 @@ fn check_rows(rows: Vec<(&'static str, Call, Expect)>) -> usize {
 fn every_invalid_collision_input_names_its_field() {
     let n = check_rows(collision_rows());
     assert!(n >= 90, "{n} rows");
+    cuesight_figures::record!("reliability-validation-collision-rows", "{n}");
 }
 
 #[test]
 fn every_invalid_strike_input_names_its_field() {
     let n = check_rows(strike_rows());
     assert!(n >= 24, "{n} rows");
+    cuesight_figures::record!("reliability-validation-strike-rows", "{n}");
 }
 
 /// The edges of every accepted range are accepted (closed ends) and produce a

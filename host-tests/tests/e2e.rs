@@ -1583,6 +1583,47 @@ fn firmware_in_qemu_answers_as_the_host_session_and_survives_hostile_frames() {
         }
     }
     assert!(problems.is_empty(), "e2e: {}", problems.join("; "));
+
+    // The figures docs/protocol.md and docs/reliability.md quote: every count of the
+    // table above, for the instance count `cargo xtask test` runs (the work is split
+    // per instance, each with its own seed).
+    if instances == DEFAULT_INSTANCES {
+        let slug = |name: &str| name.replace(['.', '_', ' ', '/'], "-");
+        for (class, tally) in &tallies {
+            let class = slug(class.name());
+            if tally.hostile > 0 {
+                let key = format!("protocol-e2e-{class}-hostile");
+                cuesight_figures::record!(&key, "{}", thousands(tally.hostile));
+            }
+            if tally.valid > 0 {
+                let key = format!("protocol-e2e-{class}-valid");
+                cuesight_figures::record!(&key, "{}", thousands(tally.valid));
+            }
+            for (name, n) in &tally.errors {
+                let key = format!("protocol-e2e-{class}-{}", slug(name));
+                cuesight_figures::record!(&key, "{}", thousands(*n));
+            }
+        }
+        cuesight_figures::record!("protocol-e2e-frames", "{}", thousands(frames));
+        cuesight_figures::record!("protocol-e2e-megabytes", "{:.1}", bytes as f64 / 1e6);
+        cuesight_figures::record!("protocol-e2e-errors", "{}", thousands(errors));
+        cuesight_figures::record!("protocol-e2e-collide-models", "{}", models.len());
+        let stroke_error_pct = reports
+            .iter()
+            .flat_map(|r| &r.stroke_truth)
+            .map(|(_, truth, got)| 100.0 * ((got - truth) / truth).abs())
+            .fold(0.0f64, f64::max);
+        cuesight_figures::record!("protocol-e2e-stroke-error-max", "{stroke_error_pct:.2}");
+        let peak_stack = reports
+            .iter()
+            .filter_map(|r| r.peak_stack.as_deref())
+            .filter_map(|line| line.split("peak stack ").nth(1)?.split_whitespace().next())
+            .filter_map(|n| n.parse::<usize>().ok())
+            .max();
+        if let Some(peak_stack) = peak_stack {
+            cuesight_figures::record!("protocol-e2e-peak-stack", "{}", thousands(peak_stack));
+        }
+    }
 }
 
 /// The number after `seq`, as docs/protocol.md §4 documents it: hosts count 0 … 0xFFFE and

@@ -151,4 +151,21 @@ fn firmware_answers_shot_requests_as_the_host_session() {
         peak <= STACK_BUDGET,
         "peak stack {peak} bytes exceeds the budget of {STACK_BUDGET} ({line})"
     );
+    // The figures docs/protocol.md and docs/reliability.md quote.
+    cuesight_figures::record!("protocol-e2e-shot-guided", "{guided}");
+    cuesight_figures::record!("protocol-e2e-shot-refused", "{refused}");
+    cuesight_figures::record!("protocol-e2e-shot-peak-stack", "{}", thousands(peak));
+}
+
+/// `n` with a comma every three digits, as the docs print it.
+fn thousands(n: u32) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }

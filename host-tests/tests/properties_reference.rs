@@ -208,6 +208,36 @@ fn run(
     w
 }
 
+/// Records the figures docs/reliability.md quotes of one test, as `PREFIX-WHAT`.
+fn record(prefix: &str, w: &Worst) {
+    let key = |what: &str| format!("{prefix}-{what}");
+    let (velocity, spin) = (100.0 * w.kim_grip.velocity, 100.0 * w.kim_grip.spin);
+    cuesight_figures::record!(&key("kim-grip-velocity"), "{velocity:.3}");
+    cuesight_figures::record!(&key("kim-grip-spin"), "{spin:.3}");
+    cuesight_figures::record!(&key("kim-grip-throw"), "{:.3}", w.kim_grip.throw_deg);
+    // The factor by which the largest stays under the bounds asserted in `check`.
+    let spare = (0.005 / w.kim_grip.velocity)
+        .min(0.01 / w.kim_grip.spin)
+        .min(0.25 / w.kim_grip.throw_deg);
+    cuesight_figures::record!(&key("kim-grip-spare"), "{spare:.1}");
+    cuesight_figures::record!(&key("exact-sliding"), "{:.4}", 100.0 * w.exact_sliding);
+    cuesight_figures::record!(&key("exact-sliding-cases"), "{}", thousands(w.sliding));
+    cuesight_figures::record!(&key("momentum"), "{:.0e}", w.momentum);
+}
+
+/// `n` with a comma every three digits, as the docs print it.
+fn thousands(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
 #[test]
 fn kim_grip_and_exact_track_the_reference() {
     let w = run(
@@ -217,13 +247,14 @@ fn kim_grip_and_exact_track_the_reference() {
         |s, _| s.params(),
     );
     assert!(w.sliding > 5_000, "{} sliding cases", w.sliding);
+    record("reliability-reference-constant", &w);
 }
 
 /// Marlow's speed-dependent law (TP A.14), or cue-ball/table friction μ_ct ≤ 0.2 —
 /// the settings for which physics.md §6 quotes `KimGrip` within the same tolerances.
 #[test]
 fn kim_grip_and_exact_track_the_reference_with_speed_dependent_and_cloth_friction() {
-    run(
+    let w = run(
         "kim_grip_and_exact_track_the_reference_with_speed_dependent_and_cloth_friction",
         5_000,
         0x7265_6600_0000_0002,
@@ -237,4 +268,5 @@ fn kim_grip_and_exact_track_the_reference_with_speed_dependent_and_cloth_frictio
             }
         },
     );
+    record("reliability-reference-marlow", &w);
 }

@@ -575,6 +575,7 @@ fn assert_exact(
 /// 25 ms blocks rounded to samples, the 2.4 ms window and 8 samples of margin).
 #[test]
 fn window_lengths_zero_one_and_around_the_minimum() {
+    let (mut fewest, mut most) = (u32::MAX, 0);
     for rate in [500.0f32, FS, 100_000.0] {
         for min_rest in [0.15f32, 10.0] {
             let config = StrokeConfig {
@@ -608,8 +609,11 @@ fn window_lengths_zero_one_and_around_the_minimum() {
                 "{rate} Hz, min_rest {min_rest}: min {min} not in [{lo}, {hi}]"
             );
             println!("{rate} Hz, min_rest {min_rest} s: at least {min} samples");
+            (fewest, most) = (fewest.min(min), most.max(min));
         }
     }
+    cuesight_figures::record!("reliability-sensors-window-min-fewest", "{fewest}");
+    cuesight_figures::record!("reliability-sensors-window-min-most", "{}", thousands(most));
 }
 
 /// Pins: windows of constant raw words — all zero, i16::MAX (clipped at +16 g), i16::MIN
@@ -884,6 +888,7 @@ fn fastest_strokes() {
     assert_exact(&s, e, FS, "15.9 g for 1 s");
     let e = e.unwrap();
     println!("15.9 g for 1 s: {} m/s", e.cue_speed);
+    cuesight_figures::record!("reliability-sensors-fastest-speed", "{:.1}", e.cue_speed);
     match e.strike(&Params::POOL, &Cue::TYPICAL, TipOffset::CENTRE) {
         Err(StrokeError::Strike(CoreError::OutOfRange {
             field: Field::CueSpeed,
@@ -1203,4 +1208,17 @@ fn strike_at_the_cue_speed_limits() {
             }
         }
     }
+}
+
+/// `n` with a comma every three digits, as the docs print it.
+fn thousands(n: u32) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }

@@ -811,6 +811,11 @@ fn estimator_answers_any_window_within_its_contract() {
         plain.worst_step5,
         aided.counts
     );
+    cuesight_figures::record!(
+        "reliability-sensors-window-step5",
+        "{:.2}",
+        plain.worst_step5
+    );
     // The domain must reach every kind of answer the windows can give.
     for k in [
         "ok",
@@ -1053,6 +1058,13 @@ fn estimator_recovers_piecewise_strokes_exactly() {
         started.elapsed().as_secs_f64()
     );
     assert!(f.ok > PIECEWISE_CASES as usize / 4 && f.not_forward > PIECEWISE_CASES as usize / 10);
+    cuesight_figures::record!(
+        "reliability-sensors-piecewise-worst",
+        "{:.2}",
+        f.worst.max(raw.worst)
+    );
+    let not_forward = thousands(f.not_forward);
+    cuesight_figures::record!("reliability-sensors-piecewise-not-forward", "{not_forward}");
 }
 
 #[test]
@@ -1105,9 +1117,23 @@ fn constant_pitch_rate_is_removed_as_gyro_bias() {
     if let Err(e) = result {
         panic!("{name}: {e}\n{runner}");
     }
+    let worst = worst.into_inner();
     println!(
-        "{name}: {PITCH_CASES} cases in {:.2} s, speed change ≤ {:.3} of the bound",
+        "{name}: {PITCH_CASES} cases in {:.2} s, speed change ≤ {worst:.3} of the bound",
         started.elapsed().as_secs_f64(),
-        worst.into_inner()
     );
+    cuesight_figures::record!("reliability-sensors-pitch-worst", "{worst:.2}");
+}
+
+/// `n` with a comma every three digits, as the docs print it.
+fn thousands(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }

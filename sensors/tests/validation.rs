@@ -261,6 +261,7 @@ fn imu_rows() -> Vec<Row> {
 fn driver_refusals_are_typed() {
     let n = check_rows(imu_rows());
     println!("{n} driver rows");
+    cuesight_figures::record!("reliability-sensors-validation-driver-rows", "{n}");
 }
 
 // ---------------------------------------------------------------------------------------
@@ -293,6 +294,7 @@ fn trigger_threshold_refusals_are_typed() {
         ));
     }
     let n = check_rows(rows);
+    cuesight_figures::record!("reliability-sensors-validation-trigger-rows", "{n}");
     // Accepted edges: the smallest subnormal and the largest finite threshold, any count.
     for t in [
         f32::from_bits(1),
@@ -446,6 +448,7 @@ fn config_rows() -> Vec<Row> {
 fn config_refusals_are_typed() {
     let n = check_rows(config_rows());
     println!("{n} configuration rows");
+    cuesight_figures::record!("reliability-sensors-validation-config-rows", "{n}");
     // Names and ranges: distinct, non-empty, as in the source.
     let all = [
         ConfigField::SampleRate,
@@ -784,6 +787,7 @@ fn input_rows() -> Vec<Row> {
 fn input_refusals_are_typed() {
     let n = check_rows(input_rows());
     println!("{n} input rows");
+    cuesight_figures::record!("reliability-sensors-validation-input-rows", "{n}");
 }
 
 // ---------------------------------------------------------------------------------------
