@@ -74,6 +74,12 @@ pub fn record_from(package: &str, target: &str, runnable: bool, key: &str, value
     );
     let thread = std::thread::current();
     let test = thread.name().unwrap_or("main");
+    // An `#[ignore]`d test (run by `cargo xtask test` with `--ignored`) says so.
+    let ignored = if std::env::args().any(|a| a == "--ignored" || a == "--include-ignored") {
+        " --ignored"
+    } else {
+        ""
+    };
     let command = if runnable {
         let exe = std::env::current_exe().unwrap_or_default();
         let kind = if exe.components().any(|c| c.as_os_str() == "examples") {
@@ -87,9 +93,9 @@ pub fn record_from(package: &str, target: &str, runnable: bool, key: &str, value
             args.join(" ")
         )
     } else if target == package.replace('-', "_") {
-        format!("cargo test -p {package} --lib -- {test} --exact")
+        format!("cargo test -p {package} --lib -- {test} --exact{ignored}")
     } else {
-        format!("cargo test -p {package} --test {target} -- {test} --exact")
+        format!("cargo test -p {package} --test {target} -- {test} --exact{ignored}")
     };
     let dir = dir();
     let write = std::fs::create_dir_all(&dir).and_then(|()| {
