@@ -70,6 +70,8 @@ fn follow_throughs(accel: &[i16], pitch: &[i16]) -> (Vec<StreamEvent>, Vec<(u64,
 struct Errors {
     length_max: f64,
     length_sq: f64,
+    /// Lengths found short of the model's.
+    length_short: usize,
     time_max: f64,
     time_sq: f64,
     count: usize,
@@ -80,6 +82,7 @@ impl Errors {
         self.length_max = self.length_max.max(length.abs());
         self.time_max = self.time_max.max(time.abs());
         self.length_sq += length * length;
+        self.length_short += usize::from(length < 0.0);
         self.time_sq += time * time;
         self.count += 1;
     }
@@ -159,6 +162,16 @@ fn follow_through_matches_the_models_motion() {
         1e3 * all.time_max,
         1e3 * time_rms
     );
+    println!("  {} of {} lengths short", all.length_short, all.count);
+    for (key, value) in [
+        ("sensors-follow-length-max-mm", 1e3 * all.length_max),
+        ("sensors-follow-length-rms-mm", 1e3 * length_rms),
+        ("sensors-follow-time-max-ms", 1e3 * all.time_max),
+        ("sensors-follow-time-rms-ms", 1e3 * time_rms),
+    ] {
+        cuesight_figures::record!(key, "{value:.2}");
+    }
+    cuesight_figures::record!("sensors-follow-length-short", "{}", all.length_short);
     assert_eq!(all.count, 120);
     assert!(all.length_max <= 0.0025, "length {} m", all.length_max);
     assert!(all.time_max <= 0.010, "time {} s", all.time_max);
@@ -242,6 +255,8 @@ fn a_knock_during_the_follow_through_gives_none() {
 /// report, 72, and the tag).
 #[test]
 fn the_event_keeps_its_size() {
+    let size = std::mem::size_of::<StreamEvent>();
+    cuesight_figures::record!("sensors-stream-event-bytes", "{size}");
     assert_eq!(std::mem::size_of::<StreamEvent>(), 80);
 }
 
@@ -304,6 +319,14 @@ fn a_pitch_change_during_the_follow_through() {
             1e3 * max,
             1e3 * rms
         );
+        let key = format!("sensors-follow-pitch-{}deg", degrees.abs());
+        let key = if degrees < 0.0 {
+            format!("{key}-down")
+        } else {
+            key
+        };
+        cuesight_figures::record!(&format!("{key}-max-mm"), "{:.2}", 1e3 * max);
+        cuesight_figures::record!(&format!("{key}-rms-mm"), "{:.2}", 1e3 * rms);
         assert_eq!(errors.len(), 120);
         assert!(max <= 0.0025 + 0.0015 * degrees.abs(), "{max} m");
     }

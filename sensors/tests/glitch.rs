@@ -23,12 +23,16 @@ use cuesight_sensors::glitch::{CONTACT_MIN_S, GAP_S};
 use cuesight_sensors::lsm6dsox::{ACCEL_MPS2_PER_LSB, GYRO_RADPS_PER_LSB, STANDARD_GRAVITY};
 use cuesight_sensors::{
     estimate_raw, find_glitch, Glitch, GlitchKind, ImpactTrigger, RingBuffer, StrokeConfig,
+    StrokeError,
 };
 use proptest::prelude::*;
 use proptest::test_runner::{contextualize_config, TestRunner};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use std::collections::BTreeMap;
 use std::sync::OnceLock;
+
+use common::thousands;
 
 const G: f64 = 9.80665;
 
@@ -575,10 +579,12 @@ fn the_demo_strokes_are_clean() {
 #[test]
 fn no_false_positive_on_any_synthetic_stroke() {
     let mut total = 0;
+    let mut per_rate = BTreeMap::new();
     let mut failures = Vec::new();
     for (name, set) in clean_sets() {
         for w in set {
             total += 1;
+            *per_rate.entry(w.rate as u32).or_insert(0) += 1;
             // Both axis polarities: words negated with the scale.
             let flipped: Vec<i16> = w.samples.iter().map(|&x| x.saturating_neg()).collect();
             let found = [
@@ -597,6 +603,11 @@ fn no_false_positive_on_any_synthetic_stroke() {
         "false positives:\n{}",
         failures.join("\n")
     );
+    cuesight_figures::record!("sensors-glitch-clean-windows", "{}", thousands(total));
+    for (rate, windows) in per_rate {
+        let key = format!("sensors-glitch-clean-windows-{rate}hz");
+        cuesight_figures::record!(&key, "{}", thousands(windows));
+    }
 }
 
 // ---------------------------------------------------------------------------------------
@@ -757,6 +768,7 @@ fn rails_and_2g_spikes_before_the_impact_are_found() {
             kinematic.len()
         );
         let zone = ambiguity_zone(fs);
+        let mut totals = Vec::new();
         for what in INJECTIONS {
             let (mut main, mut zoned) = (Tally::default(), Tally::default());
             for &w in &host {
@@ -790,7 +802,12 @@ fn rails_and_2g_spikes_before_the_impact_are_found() {
                     zoned.rate(),
                     zoned.none
                 );
+                let found = format!("sensors-glitch-zone-found-{fs}hz");
+                cuesight_figures::record!(&found, "{}", thousands(zoned.hit));
+                let injections = format!("sensors-glitch-zone-injections-{fs}hz");
+                cuesight_figures::record!(&injections, "{}", thousands(zoned.total));
             }
+            totals.push(main.total);
             assert!(main.total >= 1000);
             if main.hit != main.total {
                 failures.push(format!(
@@ -802,6 +819,14 @@ fn rails_and_2g_spikes_before_the_impact_are_found() {
                 failures.push(format!("{fs} Hz {what:?} zone: {:?}", zoned.misses));
             }
         }
+        // Injections per kind: one figure when every kind had as many.
+        let (fewest, most) = (totals.iter().min().unwrap(), totals.iter().max().unwrap());
+        let per_kind = if fewest == most {
+            thousands(*most)
+        } else {
+            format!("{}–{}", thousands(*fewest), thousands(*most))
+        };
+        cuesight_figures::record!(&format!("sensors-glitch-injections-{fs}hz"), "{per_kind}");
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
@@ -837,6 +862,7 @@ fn smallest_reliable_spike_and_the_sample_before_the_onset() {
     for fs in [1000.0, 3333.0, 6667.0] {
         let (mut windows, host) = injection_windows(fs);
         windows.extend(host);
+        let mut smallest_by_sign = Vec::new();
         for sign in [1.0, -1.0] {
             let mut smallest = None;
             for step in (10..=40).rev() {
@@ -869,7 +895,19 @@ fn smallest_reliable_spike_and_the_sample_before_the_onset() {
             );
             let smallest = smallest.expect("2 g is found");
             assert!(smallest.abs() <= 1.5, "{fs} Hz: {smallest} g");
+            smallest_by_sign.push(smallest.abs());
         }
+        // As docs/sensors.md §9 prints it: ±1.10, or +1.35 / −1.25.
+        let [up, down] = [smallest_by_sign[0], smallest_by_sign[1]].map(|g| format!("{g:.2}"));
+        let smallest = if up == down {
+            format!("±{up}")
+        } else {
+            format!("+{up} / \u{2212}{down}")
+        };
+        cuesight_figures::record!(
+            &format!("sensors-glitch-smallest-spike-{fs}hz"),
+            "{smallest}"
+        );
         // The sample just before the onset, deceleration direction: how often it is
         // still reported (never as another sample).
         for what in [Injection::DecelRail, Injection::Spike(-2.0)] {
@@ -882,6 +920,12 @@ fn smallest_reliable_spike_and_the_sample_before_the_onset() {
                 t.hit, t.none, t.total
             );
             assert_eq!(t.hit + t.none, t.total, "{:?}", t.misses);
+            if what == Injection::DecelRail {
+                let reported = format!("sensors-glitch-before-onset-reported-{fs}hz");
+                cuesight_figures::record!(&reported, "{}", thousands(t.hit));
+                let windows = format!("sensors-glitch-before-onset-windows-{fs}hz");
+                cuesight_figures::record!(&windows, "{}", thousands(t.total));
+            }
         }
     }
 }
@@ -899,6 +943,7 @@ fn a_glitch_moves_the_estimate_and_is_named() {
     config.full_scale = 32768.0 * ACCEL_MPS2_PER_LSB;
     let clean = estimate_raw(&words, ACCEL_MPS2_PER_LSB, &config).unwrap();
     let middle = (clean.rest_end + clean.impact_index) / 2;
+    cuesight_figures::record!("sensors-glitch-demo-clean-speed", "{:.2}", clean.cue_speed);
     for (what, word) in [("-32768", i16::MIN), ("+32767", i16::MAX)] {
         let mut bad = words.clone();
         bad[middle] = word;
@@ -908,6 +953,11 @@ fn a_glitch_moves_the_estimate_and_is_named() {
             est.map(|e| e.cue_speed),
             clean.cue_speed
         );
+        // The −32768 is taken for the impact: a stroke going backwards.
+        if let Err(StrokeError::NotForward { speed }) = est {
+            let speed = common::signed(f64::from(speed), 2);
+            cuesight_figures::record!("sensors-glitch-demo-rail-not-forward", "{speed}");
+        }
         assert_eq!(
             find_glitch(&bad, 1000.0, ACCEL_MPS2_PER_LSB),
             Some(Glitch {

@@ -23,6 +23,8 @@ use kinematic::{Stroke, Truth};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+use common::thousands;
+
 const FS: f64 = 6667.0;
 
 fn estimator(fs: f64) -> StreamingEstimator {
@@ -170,13 +172,17 @@ const SETS: [Set; 5] = [
     ),
 ];
 
+/// Each set's figure key in `docs/sensors.md` §11, in the order of [`SETS`].
+const SET_KEYS: [&str; 5] = ["1mg", "3mg", "8mg", "gyro", "tilt-gyro"];
+
 /// Known failure, kept visible (run with `--ignored`): the mean |Δv|/v is above the
-/// windowed estimator's on two sets, 0.0406 % vs 0.0404 % (1 mg) and 0.1352 % vs
-/// 0.1342 % (pendulum tilt); below it on the other three. The rest window starts at a
+/// windowed estimator's on three sets, 0.0406 % vs 0.0404 % (1 mg), 0.1245 % vs
+/// 0.1244 % (8 mg) and 0.1352 % vs 0.1342 % (pendulum tilt); below it on the other two
+/// (`at_least_as_accurate_as_the_windowed_estimator` records them for docs/sensors.md). The rest window starts at a
 /// block boundary (the windowed search is per sample), and with `trusted_rest` = 1 s
 /// the pause at the back is not used on these sets.
 #[test]
-#[ignore = "fails: mean error 0.5-0.7 % above the windowed estimator's on 2 of 5 sets"]
+#[ignore = "fails: mean error 0.1-0.8 % above the windowed estimator's on 3 of 5 sets"]
 fn mean_error_at_most_the_windowed_estimators() {
     for (label, noise, seed, tilt, aided) in SETS {
         let (stream, window, _) = compare_set(noise, seed, tilt, aided);
@@ -207,6 +213,30 @@ fn at_least_as_accurate_as_the_windowed_estimator() {
             (label, stream, window, worst_index)
         })
         .collect();
+    let mut means_above = Vec::new();
+    for (key, (_, stream, window, _)) in SET_KEYS.iter().zip(&results) {
+        for (estimator, errors) in [("stream", stream), ("stream-windowed", window)] {
+            let max = format!("sensors-{estimator}-{key}-max");
+            cuesight_figures::record!(&max, "{:.3}", 100.0 * errors.max);
+            let mean = format!("sensors-{estimator}-{key}-mean");
+            cuesight_figures::record!(&mean, "{:.4}", 100.0 * errors.mean());
+        }
+        if stream.mean() > window.mean() {
+            means_above.push(format!(
+                "{:.1} %",
+                100.0 * (stream.mean() / window.mean() - 1.0)
+            ));
+        }
+    }
+    let means_above_by = match &means_above[..] {
+        [] => "none".to_string(),
+        [one] => one.clone(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    };
+    cuesight_figures::record!("sensors-stream-mean-above-sets", "{}", means_above.len());
+    cuesight_figures::record!("sensors-stream-mean-above-by", "{means_above_by}");
+    let worst_index = results.iter().map(|r| r.3).max().unwrap();
+    cuesight_figures::record!("sensors-stream-impact-within", "{worst_index}");
     for (label, stream, window, worst_index) in results {
         assert_eq!(stream.failures, 0);
         assert!(
@@ -275,6 +305,15 @@ fn continuous_streams_meet_the_acceptance_figures() {
         "continuous streams: {}; impact within {worst_index} samples; strokes {shortest:.2}-{longest:.2} s",
         all.line()
     );
+    cuesight_figures::record!("sensors-stream-continuous-max", "{:.3}", 100.0 * all.max);
+    cuesight_figures::record!(
+        "sensors-stream-continuous-mean",
+        "{:.3}",
+        100.0 * all.mean()
+    );
+    cuesight_figures::record!("sensors-stream-continuous-impact-within", "{worst_index}");
+    cuesight_figures::record!("sensors-stream-continuous-shortest", "{shortest:.1}");
+    cuesight_figures::record!("sensors-stream-continuous-longest", "{longest:.1}");
     assert_eq!(all.count, 120);
     assert!(
         shortest >= 1.0 && longest <= 6.0,
@@ -291,6 +330,7 @@ fn any_length_of_address_backswing_and_pause() {
     let mut rng = ChaCha8Rng::seed_from_u64(0x1046);
     let noise = 8e-3 * kinematic::G;
     let mut all = Errors::default();
+    let mut worst_index = 0;
     let cases: [(f64, f64, f64); 8] = [
         // (address s, backswing s, pause s)
         (0.2, 0.3, 0.0),
@@ -328,12 +368,16 @@ fn any_length_of_address_backswing_and_pause() {
                 100.0 * errors[0]
             );
             all.add(errors[0]);
+            worst_index = worst_index.max(worst);
         }
     }
     println!(
-        "address 0.2-30 s, backswing 0.3-1.5 s, pause 0-5 s: {}",
+        "address 0.2-30 s, backswing 0.3-1.5 s, pause 0-5 s: {}; impact within {worst_index} samples",
         all.line()
     );
+    cuesight_figures::record!("sensors-stream-phases-strokes", "{}", all.count);
+    cuesight_figures::record!("sensors-stream-phases-max", "{:.3}", 100.0 * all.max);
+    cuesight_figures::record!("sensors-stream-phases-impact-within", "{worst_index}");
 }
 
 /// Three strokes in a stream; `spoil` edits the middle one's words (given its truth).
@@ -534,6 +578,7 @@ fn si_input_matches_raw_words() {
 fn state_fits_in_2_kib() {
     let size = std::mem::size_of::<StreamingEstimator>();
     println!("StreamingEstimator: {size} bytes");
+    cuesight_figures::record!("sensors-stream-state-bytes", "{}", thousands(size));
     assert!(size <= 2048, "{size} bytes");
 }
 
@@ -664,6 +709,9 @@ fn bench_stream() -> (Vec<i16>, Vec<i16>, Vec<Truth>, usize) {
 #[test]
 fn the_bench_stream_gives_its_strokes_and_faults() {
     let (accel, pitch, truth, knock) = bench_stream();
+    cuesight_figures::record!("sensors-bench-stream-samples", "{}", thousands(accel.len()));
+    let seconds = accel.len() as f64 / FS;
+    cuesight_figures::record!("sensors-bench-stream-seconds", "{seconds:.0}");
     let mut est = estimator(FS);
     let events = events(&mut est, &accel, Some(&pitch));
     assert_eq!(events.len(), 7, "{events:?}");

@@ -50,10 +50,13 @@ struct Worst {
     forward_s: f64,
     tempo: f64,
     count: usize,
+    /// The stroke of the worst backswing length: its backswing (m), pause (s) and noise
+    /// (mg RMS).
+    length_stroke: (f64, f64, f64),
 }
 
 impl Worst {
-    fn add(&mut self, s: &StreamStroke, t: &Truth) {
+    fn add(&mut self, s: &StreamStroke, t: &Truth, noise_mg: f64) {
         let stroke = &t.stroke;
         // The stroke's clock starts at stream sample `offset`.
         let offset = (t.contact - stroke.contact_sample(FS)) as f64 / FS;
@@ -70,6 +73,9 @@ impl Worst {
             f64::from(s.forward_time) - forward,
         ];
         let tempo = f64::from(s.tempo().unwrap_or(f32::NAN)) / (back / forward) - 1.0;
+        if length.abs() > self.length_m {
+            self.length_stroke = (stroke.back.0, stroke.pause, noise_mg);
+        }
         self.length_m = self.length_m.max(length.abs());
         self.back_s = self.back_s.max(errors[0].abs());
         self.pause_s = self.pause_s.max(errors[1].abs());
@@ -105,7 +111,7 @@ fn metrics_match_the_models_motion() {
             .collect();
         assert_eq!(found.len(), stream.truth.len());
         for (s, t) in found.iter().zip(&stream.truth) {
-            worst.add(s, t);
+            worst.add(s, t, stream.noise_mg);
         }
     }
     println!(
@@ -120,6 +126,45 @@ fn metrics_match_the_models_motion() {
         1e3 * worst.forward_s,
         1e2 * worst.tempo
     );
+    let (back, pause, noise) = worst.length_stroke;
+    println!(
+        "  worst backswing length: a {:.0} mm backswing, {pause:.2} s pause, {noise} mg",
+        1e3 * back
+    );
+    for (key, value) in [
+        (
+            "sensors-metrics-start-ms",
+            format!("{:.1}", 1e3 * worst.start_s),
+        ),
+        (
+            "sensors-metrics-length-mm",
+            format!("{:.2}", 1e3 * worst.length_m),
+        ),
+        (
+            "sensors-metrics-length-backswing-mm",
+            format!("{:.0}", 1e3 * back),
+        ),
+        ("sensors-metrics-length-pause-s", format!("{pause:.2}")),
+        ("sensors-metrics-length-noise-mg", format!("{noise}")),
+        (
+            "sensors-metrics-back-ms",
+            format!("{:.2}", 1e3 * worst.back_s),
+        ),
+        (
+            "sensors-metrics-pause-ms",
+            format!("{:.2}", 1e3 * worst.pause_s),
+        ),
+        (
+            "sensors-metrics-forward-ms",
+            format!("{:.2}", 1e3 * worst.forward_s),
+        ),
+        (
+            "sensors-metrics-tempo-pct",
+            format!("{:.3}", 1e2 * worst.tempo),
+        ),
+    ] {
+        cuesight_figures::record!(key, "{value}");
+    }
     assert_eq!(worst.count, 120);
     assert!(worst.start_s <= 0.020, "{} s", worst.start_s);
     assert!(worst.length_m <= 0.005, "{} m", worst.length_m);

@@ -36,6 +36,8 @@ use cuesight_sensors::{
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+mod common;
+
 // The kinematic stroke model (min-jerk phases, contact, ringing, tilt, noise), shared
 // with the streaming estimator's tests and the live-trace generator.
 #[path = "common/kinematic.rs"]
@@ -180,6 +182,25 @@ fn report(label: &str, noise_mg: f64, f: &Figures) {
     }
 }
 
+/// Records a set's row of `docs/sensors.md` §6 (`KEY-max`, `KEY-rms`, `KEY-mean`, in
+/// percent to `decimals` places) and its worst error to two places (`KEY-max-2dp`).
+fn record(key: &str, f: &Figures, decimals: usize) {
+    let [max, rms] = [f.max_abs, f.rms].map(|x| format!("{:.decimals$}", 100.0 * x));
+    cuesight_figures::record!(&format!("{key}-max"), "{max}");
+    cuesight_figures::record!(&format!("{key}-rms"), "{rms}");
+    let mean = common::signed(100.0 * f.mean, decimals);
+    cuesight_figures::record!(&format!("{key}-mean"), "{mean}");
+    cuesight_figures::record!(&format!("{key}-max-2dp"), "{:.2}", 100.0 * f.max_abs);
+}
+
+/// The worst error of each speed band, `KEY-band-0-5` (0.5–1 m/s), `-1`, `-2`, `-4`
+/// (4–6 m/s), in percent to `decimals` places.
+fn record_bands(key: &str, f: &Figures, decimals: usize) {
+    for (band, max) in ["0-5", "1", "2", "4"].iter().zip(f.band_max) {
+        cuesight_figures::record!(&format!("{key}-band-{band}"), "{:.decimals$}", 100.0 * max);
+    }
+}
+
 const STROKES: usize = 250;
 
 /// The brief's figure: ~1 mg RMS at ODR/2.
@@ -187,6 +208,7 @@ const STROKES: usize = 250;
 fn speed_error_within_3_percent_at_1_mg_noise() {
     let f = run(FS, 1.0, STROKES, 0x5EED_0001, None, false, |_, _, _| {});
     report("6667 Hz, accelerometer only", 1.0, &f);
+    record("sensors-speed-1mg", &f, 3);
     assert_eq!(f.failures, 0);
     assert!(f.max_abs <= 0.03, "max error {:.3} %", 100.0 * f.max_abs);
 }
@@ -197,6 +219,7 @@ fn speed_error_within_3_percent_at_1_mg_noise() {
 fn speed_error_within_3_percent_at_3_mg_noise() {
     let f = run(FS, 3.0, STROKES, 0x5EED_0003, None, false, |_, _, _| {});
     report("6667 Hz, accelerometer only", 3.0, &f);
+    record("sensors-speed-3mg", &f, 3);
     assert_eq!(f.failures, 0);
     assert!(f.max_abs <= 0.03, "max error {:.3} %", 100.0 * f.max_abs);
 }
@@ -206,6 +229,8 @@ fn speed_error_within_3_percent_at_3_mg_noise() {
 fn speed_error_within_3_percent_at_8_mg_noise() {
     let f = run(FS, 8.0, STROKES, 0x5EED_0008, None, false, |_, _, _| {});
     report("6667 Hz, accelerometer only", 8.0, &f);
+    record("sensors-speed-8mg", &f, 3);
+    record_bands("sensors-speed-8mg", &f, 2);
     assert_eq!(f.failures, 0);
     assert!(f.max_abs <= 0.03, "max error {:.3} %", 100.0 * f.max_abs);
 }
@@ -237,6 +262,9 @@ fn pendulum_tilt_needs_the_gyro() {
         8.0,
         &plain,
     );
+    record("sensors-speed-tilt", &plain, 1);
+    record_bands("sensors-speed-tilt", &plain, 0);
+    cuesight_figures::record!("sensors-speed-tilt-max-0dp", "{:.0}", 100.0 * plain.max_abs);
     assert_eq!(plain.failures, 0);
     assert!(
         worst_unexplained <= 1.0,
@@ -244,6 +272,7 @@ fn pendulum_tilt_needs_the_gyro() {
     );
     let aided = run(FS, 8.0, STROKES, 0x5EED_7117, tilt, true, |_, _, _| {});
     report("6667 Hz, pendulum tilt 0.5-2 deg, gyro-aided", 8.0, &aided);
+    record("sensors-speed-tilt-gyro", &aided, 3);
     assert_eq!(aided.failures, 0);
     assert!(
         aided.max_abs <= 0.03,
@@ -254,6 +283,7 @@ fn pendulum_tilt_needs_the_gyro() {
     // only): the pitch channel must not cost accuracy.
     let flat = run(FS, 8.0, STROKES, 0x5EED_0008, None, true, |_, _, _| {});
     report("6667 Hz, no tilt, gyro-aided", 8.0, &flat);
+    record("sensors-speed-gyro", &flat, 3);
     assert!(
         flat.max_abs <= 0.03,
         "max error {:.3} %",
@@ -269,6 +299,9 @@ fn lower_sample_rates() {
     for (fs, limit) in [(3333.0, 0.03), (1667.0, 0.03)] {
         let f = run(fs, 8.0, STROKES, 0x5EED_0008, None, false, |_, _, _| {});
         report(&format!("{fs} Hz, accelerometer only"), 8.0, &f);
+        record(&format!("sensors-speed-{fs}hz"), &f, 3);
+        let max = 100.0 * f.max_abs;
+        cuesight_figures::record!(&format!("sensors-speed-{fs}hz-max-1dp"), "{max:.1}");
         assert_eq!(f.failures, 0);
         assert!(
             f.max_abs <= limit,
