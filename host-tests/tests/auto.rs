@@ -132,6 +132,9 @@ fn auto_never_picks_ideal_where_friction_throws_a_thin_cut() {
     for (name, params, impact) in cases {
         let reference = cuesight_host::reference::collide(&params, &impact).throw_angle_deg();
         assert!(reference > 3.0, "{name}: reference throw {reference}°");
+        if name.contains("--roll") {
+            cuesight_figures::record!("physics-auto-thin-cut-reference-throw", "{reference:.2}");
+        }
         for tolerance in [1e-2f32, 1e-3] {
             let (tier, _) = select_model(&params, &impact, tolerance);
             assert_ne!(tier, Model::Ideal, "{name}, tolerance {tolerance}");

@@ -157,6 +157,11 @@ fn matches_the_seed_physics_to_quadrature_precision() {
     };
     record_precise("physics-seed-exact-along-x-f64", f64_all);
     cuesight_figures::record!(
+        "physics-seed-exact-along-x-max",
+        "{:.0e}",
+        measure(&f32_sliding.max).max(measure(&f32_gripping.max))
+    );
+    cuesight_figures::record!(
         "physics-seed-exact-regime-agrees",
         "{}",
         thousands(grid.len() - regime_mismatch)
