@@ -429,6 +429,16 @@ fn grip_boundary_is_continuous_in_every_parameter() {
             );
         }
     }
+    // docs/physics.md §7: SeedExact's largest jump over every bisected parameter.
+    let seed_exact = MODELS
+        .iter()
+        .position(|(model, _)| *model == Model::SeedExact)
+        .expect("SeedExact is bisected");
+    cuesight_figures::record!(
+        "physics-seed-exact-boundary-jump-domain",
+        "{:.1e}",
+        worst[seed_exact].iter().fold(0.0f32, |a, &b| a.max(b))
+    );
     assert!(crossings.iter().all(|c| c[0] > 50), "{crossings:?}");
     // The figures docs/reliability.md quotes: over the five parameters bisected.
     let total = |m: usize| crossings[m].iter().sum::<usize>();

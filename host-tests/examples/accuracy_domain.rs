@@ -9,7 +9,7 @@
 //!
 //! Options: `--scenes N` (default 100,000), `--seed S` (default 16), `--threads T`
 //! (default 2), `--out DIR`.
-use cuesight_host::domain::{sample, score_all, Map};
+use cuesight_host::domain::{mu_mu_s_band, sample, score_all, worst_scene, worst_throw_scene, Map};
 use std::time::Instant;
 
 fn main() {
@@ -45,20 +45,8 @@ fn main() {
     println!("{tables}");
     println!("#### Worst scene per model\n");
     for (m, (name, _)) in cuesight_host::domain::MODELS.iter().enumerate() {
-        let (i, worst) = scored
-            .iter()
-            .enumerate()
-            .max_by(|a, b| a.1.combined(m).total_cmp(&b.1.combined(m)))
-            .expect("scenes");
-        let (t, throw) = scored
-            .iter()
-            .enumerate()
-            .max_by(|a, b| {
-                let e =
-                    |s: &cuesight_host::domain::Scored| s.errors[m].map_or(0.0, |e| e.throw_deg);
-                e(a.1).total_cmp(&e(b.1))
-            })
-            .expect("scenes");
+        let (i, worst) = worst_scene(&scored, m, |_| true).expect("scenes");
+        let (t, throw) = worst_throw_scene(&scored, m).expect("scenes");
         for (what, index, s) in [("combined", i, worst), ("throw", t, throw)] {
             let d = &s.scene;
             println!(
@@ -79,14 +67,7 @@ fn main() {
     println!("\n#### KimGrip's worst scene per μ·μ_s band\n");
     let bands = cuesight_host::domain::MU_MU_S_BANDS;
     for (b, hi) in bands.iter().enumerate() {
-        let worst = scored
-            .iter()
-            .enumerate()
-            .filter(|(_, s)| {
-                let x = s.scene.mu() * s.scene.scene.mu_s as f64;
-                cuesight_host::domain::band(x, &bands) == b
-            })
-            .max_by(|a, b| a.1.combined(2).total_cmp(&b.1.combined(2)));
+        let worst = worst_scene(&scored, 2, |s| mu_mu_s_band(s) == b);
         if let Some((i, s)) = worst {
             let d = &s.scene;
             println!(

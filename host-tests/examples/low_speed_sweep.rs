@@ -7,6 +7,7 @@
 //!
 //! prints the tables of `docs/low-speed-limit.md`, writes the full sweep to
 //! `target/tmp/low-speed-sweep.csv` and redraws `docs/low-speed-limit.svg`.
+use cuesight_figures::record;
 use cuesight_host::reference::BallState;
 use cuesight_host::timed::{
     limit_speed, log_speeds, Comparison, Geometry, Material, Scenario, SpinKind, TimedConfig,
@@ -115,6 +116,94 @@ fn crossing_up(speeds: &[f64], threshold: f64, mut error: impl FnMut(f64) -> f64
     Some((lo * hi).sqrt())
 }
 
+/// A number in a figure key: `0.001` → `0-001`.
+fn key_number(x: f64) -> String {
+    x.to_string().replace('.', "-")
+}
+
+/// The figures of docs/low-speed-limit.md §4 and of its summary, recorded by hand (this
+/// example is not run by CI; `cargo xtask docs --check` checks them when recorded).
+fn record_sweep(rows: &[Row], top: f64) {
+    let limit = |r: &Row| r.full.filter(|&u| u < top);
+    let largest = |f: &dyn Fn(&Row) -> Option<f64>, keep: &dyn Fn(&Row) -> bool| {
+        rows.iter()
+            .filter(|r| keep(r))
+            .filter_map(f)
+            .filter(|&u| u < top)
+            .fold(0.0f64, f64::max)
+    };
+    for r in rows {
+        let s = &r.scenario;
+        let key = format!("low-speed-limit-sweep-{}-{:.0}", s.spin.label(), s.cut_deg);
+        if s.mu == 0.05 {
+            record!(
+                &key,
+                "{} | {} | {} | {} | {:.3} %",
+                fmt_limit(r.full, top),
+                r.at_limit.replace("Rω", "R ω"),
+                fmt_limit(r.in_plane, top),
+                fmt_limit(r.rolling, top),
+                100.0 * r.at_2[0]
+            );
+            let by_mu: Vec<String> = [0.02, 0.05, 0.1]
+                .iter()
+                .map(|&mu| {
+                    let other = rows
+                        .iter()
+                        .find(|o| {
+                            o.scenario.mu == mu
+                                && o.scenario.spin == s.spin
+                                && o.scenario.cut_deg == s.cut_deg
+                        })
+                        .expect("every scenario at every μ");
+                    fmt_limit(other.full, top)
+                })
+                .collect();
+            record!(&format!("{key}-by-mu"), "{}", by_mu.join(" | "));
+        }
+    }
+    let by_mu: Vec<String> = [0.02, 0.05, 0.1]
+        .iter()
+        .map(|&mu| format!("**{:.3}**", largest(&|r| r.full, &|r| r.scenario.mu == mu)))
+        .collect();
+    record!(
+        "low-speed-limit-sweep-largest-by-mu",
+        "{}",
+        by_mu.join(" | ")
+    );
+    let all = |_: &Row| true;
+    let full = largest(&|r| r.full, &all);
+    record!("low-speed-limit-sweep-largest", "{full:.3}");
+    record!(
+        "low-speed-limit-sweep-largest-up",
+        "{:.2}",
+        (100.0 * full).ceil() / 100.0
+    );
+    let to_60 = largest(&|r| r.full, &|r| r.scenario.cut_deg <= 60.0);
+    record!("low-speed-limit-sweep-largest-to-60", "{to_60:.3}");
+    record!(
+        "low-speed-limit-sweep-largest-to-60-up",
+        "{:.2}",
+        (100.0 * to_60).ceil() / 100.0
+    );
+    record!(
+        "low-speed-limit-sweep-largest-in-plane",
+        "{:.3}",
+        largest(&|r| r.in_plane, &all)
+    );
+    let rolling = largest(&|r| r.rolling, &all);
+    record!("low-speed-limit-sweep-largest-rolling", "{rolling:.3}");
+    record!("low-speed-limit-sweep-largest-rolling-2", "{rolling:.2}");
+    let smallest = rows.iter().filter_map(limit).fold(f64::INFINITY, f64::min);
+    record!("low-speed-limit-sweep-smallest", "{smallest:.2}");
+    record!("low-speed-limit-sweep-largest-2", "{full:.2}");
+    let moving_shift = rows
+        .iter()
+        .filter_map(|r| Some((r.moving? - r.full?).abs()))
+        .fold(0.0f64, f64::max);
+    record!("low-speed-limit-sweep-moving-shift", "{moving_shift:.3}");
+}
+
 struct Row {
     scenario: Scenario,
     full: Option<f64>,
@@ -158,6 +247,18 @@ fn main() {
     for u in [0.001, 0.01, 0.1, 0.5, 1.0, 1.5, 2.0] {
         let c = run(&frictionless, &frictionless.params(), u, &fixed);
         let e = (c.timed.object_ball.velocity.x - c.timed.cue_ball.velocity.x) / u;
+        // docs/low-speed-limit.md §1 (by hand: the solver's durations at 0.01, 1 and
+        // 2 m/s are also the CI test's).
+        let key = format!("low-speed-limit-sweep-duration-{}", key_number(u));
+        record!(&format!("{key}-solver"), "{:.1}", c.timed.duration * 1e6);
+        record!(
+            &key,
+            "{:.1} | {:.3} | {:.3} | {:.6}",
+            m.duration(POOL_RADIUS, POOL_MASS, 0.95, u) * 1e6,
+            c.timed.max_indentation * 1e6,
+            c.timed.peak_force,
+            e
+        );
         let _ = writeln!(
             out,
             "| {u} | {:.1} | {:.1} | {:.3} | {:.3} | {:.6} |",
@@ -283,6 +384,7 @@ fn main() {
             .filter(|&u| u < top)
             .fold(0.0f64, f64::max)
     };
+    record_sweep(&rows, top);
     let _ = writeln!(out, "\nOverall (largest U_1% over the scenarios):\n");
     for (name, mu) in [
         ("μ = 0.05", Some(0.05)),
@@ -305,6 +407,12 @@ fn main() {
         100.0 * rows.iter().map(|r| r.at_2[0]).fold(0.0, f64::max),
         100.0 * rows.iter().map(|r| r.at_2[1]).fold(0.0, f64::max)
     );
+    record!(
+        "low-speed-limit-sweep-moving-largest-at-2",
+        "{:.3}",
+        100.0 * rows.iter().map(|r| r.at_2[1]).fold(0.0, f64::max)
+    );
+    record!("low-speed-limit-sweep-step-halving", "{convergence:.1e}");
     let _ = writeln!(
         out,
         "- step halving ({} → {} steps per contact), largest change over the sweep: {convergence:.2e} U",
@@ -331,10 +439,21 @@ fn main() {
         };
         let err = |u: f64| run(&s, &p, u, &moving).deviation.max();
         let show = |l: Option<f64>| l.map_or(String::from("> 32"), |u| format!("{u:.2}"));
+        let (half, one) = (
+            show(crossing_up(&fast, 0.005, err)),
+            show(crossing_up(&fast, 0.01, err)),
+        );
         let _ = writeln!(
             out,
-            "| {cut}° | {:.3} % | {} | {} |",
-            100.0 * err(2.0),
+            "| {cut}° | {:.3} % | {half} | {one} |",
+            100.0 * err(2.0)
+        );
+        let key = format!("low-speed-limit-sweep-moving-{cut:.0}");
+        record!(&format!("{key}-at-2"), "{:.3}", 100.0 * err(2.0));
+        let show = |l: Option<f64>| l.map_or(String::from("> 32"), |u| format!("{u:.1}"));
+        record!(
+            &key,
+            "{} m/s | {} m/s",
             show(crossing_up(&fast, 0.005, err)),
             show(crossing_up(&fast, 0.01, err))
         );
@@ -353,6 +472,7 @@ fn main() {
         ("μ_s = 0.4", 1.0, 0.4, 0.0),
         ("cue-ball/table friction 0.2 (both solvers)", 1.0, 0.3, 0.2),
     ];
+    let mut limits = Vec::new();
     for (name, e_factor, mu_s, cue_table) in variants {
         let material = Material {
             youngs_modulus: m.youngs_modulus * e_factor,
@@ -376,12 +496,20 @@ fn main() {
                 overall = overall.max(l.unwrap_or(0.0));
             }
         }
-        let _ = writeln!(
-            out,
-            "| {name} | {:.0} | {overall:.3} |",
-            material.duration(POOL_RADIUS, POOL_MASS, 0.95, 1.0) * 1e6
+        let duration = material.duration(POOL_RADIUS, POOL_MASS, 0.95, 1.0) * 1e6;
+        let _ = writeln!(out, "| {name} | {duration:.0} | {overall:.3} |");
+        limits.push(overall);
+        record!(
+            &format!("low-speed-limit-sweep-sensitivity-{}", limits.len()),
+            "{duration:.0} | {overall:.3}"
         );
     }
+    record!("low-speed-limit-sweep-mu-s-0-2", "{:.3}", limits[3]);
+    record!(
+        "low-speed-limit-sweep-cue-table-change",
+        "{:.3}",
+        (limits[5] - limits[0]).abs()
+    );
     print!("{out}");
 
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");

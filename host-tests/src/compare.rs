@@ -106,6 +106,53 @@ impl Summary {
     }
 }
 
+impl Summary {
+    /// The figures the docs quote of this summary, `(key, value)`: its maxima
+    /// (`KEY-velocity` and `KEY-spin` in % of U, `KEY-throw` in degrees, with `max`
+    /// decimals) and its RMS (`KEY-rms`, `v %, Rω %, throw°`, with `rms` decimals). A test
+    /// records them (`cuesight_figures::record!`).
+    pub fn figures(&self, key: &str, max: [usize; 3], rms: [usize; 3]) -> Vec<(String, String)> {
+        let [v, w, t] = max;
+        let [rv, rw, rt] = rms;
+        vec![
+            (
+                format!("{key}-velocity"),
+                format!("{:.v$}", 100.0 * self.max.velocity),
+            ),
+            (
+                format!("{key}-spin"),
+                format!("{:.w$}", 100.0 * self.max.spin),
+            ),
+            (
+                format!("{key}-throw"),
+                format!("{:.t$}", self.max.throw_deg),
+            ),
+            (
+                format!("{key}-rms"),
+                format!(
+                    "{:.rv$} %, {:.rw$} %, {:.rt$}°",
+                    100.0 * self.rms.velocity,
+                    100.0 * self.rms.spin,
+                    self.rms.throw_deg
+                ),
+            ),
+        ]
+    }
+}
+
+/// A count as the docs print it: `10,000`.
+pub fn thousands(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
 impl core::fmt::Display for Summary {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         write!(

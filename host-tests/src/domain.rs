@@ -432,11 +432,174 @@ impl Map {
         map
     }
 
-    /// Markdown tables: per model, the share within each threshold by region.
+    /// The rows of the three share tables, in order: `(table, key, label, cell)`. The
+    /// table is 0 (by μ·μ_s), 1 (by μ·μ_s, μ_ct = 0) or 2 (by cut, speed, spin, friction
+    /// law and μ_ct); the key names the row's figure ([`Map::figures`]).
+    pub fn share_rows(&self) -> Vec<(usize, String, String, &Cell)> {
+        let mut rows = vec![(0, "all".to_string(), "all".to_string(), &self.all)];
+        for (table, cells, key) in [
+            (0, &self.by_mu_mu_s, "by-mu-mu-s"),
+            (1, &self.by_mu_mu_s_no_ct, "by-mu-mu-s-no-ct"),
+        ] {
+            let mut lo = 0.0;
+            for (i, &hi) in MU_MU_S_BANDS.iter().enumerate() {
+                let open = if i == 0 { "[" } else { "(" };
+                rows.push((
+                    table,
+                    format!("{key}-{}", key_number(hi)),
+                    format!("μ·μ_s {open}{lo}, {hi}]"),
+                    &cells[i],
+                ));
+                lo = hi;
+            }
+        }
+        let mut lo = 0.0;
+        for (i, &hi) in CUT_BANDS.iter().enumerate() {
+            let open = if i == 0 { "[" } else { "(" };
+            rows.push((
+                2,
+                format!("by-cut-{}", key_number(hi)),
+                format!("\\|φ\\| {open}{lo}°, {hi}°)"),
+                &self.by_cut[i],
+            ));
+            lo = hi;
+        }
+        let mut lo = 0.0;
+        for (i, &hi) in SPEED_BANDS.iter().enumerate() {
+            rows.push((
+                2,
+                format!("by-speed-{}", key_number(hi)),
+                format!("U ({lo}, {hi}] m/s"),
+                &self.by_speed[i],
+            ));
+            lo = hi;
+        }
+        for (i, (key, label)) in [
+            ("none", "spin: none"),
+            ("cue-like", "spin: cue-like"),
+            ("uniform-400", "spin: uniform ±400 rad/s"),
+            ("extreme", "spin: extreme, to 10⁴ rad/s"),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            rows.push((
+                2,
+                format!("spin-{key}"),
+                label.to_string(),
+                &self.by_spin[i],
+            ));
+        }
+        rows.push((
+            2,
+            "speed-dependent".to_string(),
+            "μ(v) (speed-dependent)".to_string(),
+            &self.speed_dependent,
+        ));
+        rows.push((
+            2,
+            "cue-table".to_string(),
+            "μ_ct > 0".to_string(),
+            &self.cue_table,
+        ));
+        rows
+    }
+
+    /// The figures of the tables, as docs/accuracy-domain.md holds them: `(key, value)`,
+    /// the key without its `accuracy-domain-` prefix. Every row of every table is one
+    /// figure (its cells after the label, `|`-separated as in [`Map::markdown`]), and so
+    /// is each share of a share table (`ROW-MODEL-THRESHOLD`, e.g.
+    /// `by-mu-mu-s-0-02-kimgrip-0-5`), each worst case of a model, and `Auto`'s share
+    /// within its own tolerance.
+    pub fn figures(&self) -> Vec<(String, String)> {
+        let mut out = Vec::new();
+        for (_, key, _, cell) in self.share_rows() {
+            out.push((key.clone(), share_cells(cell)));
+            for (m, (name, _)) in MODELS.iter().enumerate() {
+                for (t, threshold) in ["0-05", "0-5", "5"].into_iter().enumerate() {
+                    out.push((
+                        format!("{key}-{}-{threshold}", model_key(name)),
+                        percent(cell.share(m, t)),
+                    ));
+                }
+            }
+        }
+        for (i, &hi) in MU_MU_S_BANDS.iter().enumerate() {
+            out.push((
+                format!("worst-by-mu-mu-s-{}", key_number(hi)),
+                worst_cells(&self.by_mu_mu_s[i]),
+            ));
+        }
+        for (m, (name, _)) in MODELS.iter().enumerate() {
+            let key = format!("worst-{}", model_key(name));
+            out.push((key.clone(), self.worst_model_cells(m)));
+            out.push((
+                format!("{key}-percent"),
+                format!("{:.0}", 100.0 * self.all.worst[m]),
+            ));
+            out.push((
+                format!("{key}-throw"),
+                format!("{:.1}", self.all.worst_throw[m]),
+            ));
+            out.push((
+                format!("{key}-throw-3"),
+                format!("{:.3}", self.all.worst_throw[m]),
+            ));
+            out.push((
+                format!("{key}-throw-moving"),
+                format!("{:.1}", self.all.worst_throw_moving[m]),
+            ));
+            out.push((
+                format!("{key}-outside-0-5"),
+                (self.all.count - self.all.within[m][1]).to_string(),
+            ));
+        }
+        let all = &self.all;
+        out.push((
+            "auto-within-tolerance".to_string(),
+            format!(
+                "{:.2}",
+                100.0 * all.auto_within_tolerance as f64 / all.count.max(1) as f64
+            ),
+        ));
+        out.push((
+            "auto-within-tolerance-scenes".to_string(),
+            all.auto_within_tolerance.to_string(),
+        ));
+        out.push((
+            "auto-worst-tolerances".to_string(),
+            format!("{:.1}", all.worst[AUTO] / AUTO_TOLERANCE),
+        ));
+        out.push(("scenes".to_string(), all.count.to_string()));
+        out
+    }
+
+    /// A row of the worst-case table, after the model name.
+    fn worst_model_cells(&self, m: usize) -> String {
+        let all = &self.all;
+        format!(
+            "{:.3e} | {:.3}° | {:.3}° | {} / {} / {} | {}",
+            all.worst[m],
+            all.worst_throw[m],
+            all.worst_throw_moving[m],
+            all.count - all.within[m][0],
+            all.count - all.within[m][1],
+            all.count - all.within[m][2],
+            all.failed[m]
+        )
+    }
+
+    /// Markdown tables: per model, the share within each threshold by region; the worst
+    /// errors by μ·μ_s band and per model; `Auto`'s share within its own tolerance.
     pub fn markdown(&self) -> String {
         let mut out = String::new();
-        let pct = |x: f64| format!("{:.1}", 100.0 * x);
-        let mut table = |title: &str, rows: Vec<(String, &Cell)>| {
+        let titles = [
+            "By μ·μ_s: % within 0.05 % / 0.5 % / 5 % of U",
+            "By μ·μ_s, μ_ct = 0 only: % within 0.05 % / 0.5 % / 5 % of U",
+            "By cut, speed, spin, friction law and μ_ct: % within 0.05 % / 0.5 % / 5 % of U",
+        ];
+        let rows = self.share_rows();
+        for (table, title) in titles.into_iter().enumerate() {
             let _ = writeln!(out, "\n#### {title}\n");
             let _ = write!(out, "| region | scenes |");
             for (name, _) in MODELS {
@@ -447,71 +610,10 @@ impl Map {
                 let _ = write!(out, "---|");
             }
             out.push('\n');
-            for (label, cell) in rows {
-                let _ = write!(out, "| {label} | {} |", cell.count);
-                for m in 0..MODELS.len() {
-                    let _ = write!(
-                        out,
-                        " {} / {} / {} |",
-                        pct(cell.share(m, 0)),
-                        pct(cell.share(m, 1)),
-                        pct(cell.share(m, 2))
-                    );
-                }
-                out.push('\n');
+            for (_, _, label, cell) in rows.iter().filter(|row| row.0 == table) {
+                let _ = writeln!(out, "| {label} | {} |", share_cells(cell));
             }
-        };
-        let mut rows = vec![("all".to_string(), &self.all)];
-        let mut lo = 0.0;
-        for (i, &hi) in MU_MU_S_BANDS.iter().enumerate() {
-            let open = if i == 0 { "[" } else { "(" };
-            rows.push((format!("μ·μ_s {open}{lo}, {hi}]"), &self.by_mu_mu_s[i]));
-            lo = hi;
         }
-        table("By μ·μ_s: % within 0.05 % / 0.5 % / 5 % of U", rows);
-        let mut rows = Vec::new();
-        let mut lo = 0.0;
-        for (i, &hi) in MU_MU_S_BANDS.iter().enumerate() {
-            let open = if i == 0 { "[" } else { "(" };
-            rows.push((
-                format!("μ·μ_s {open}{lo}, {hi}]"),
-                &self.by_mu_mu_s_no_ct[i],
-            ));
-            lo = hi;
-        }
-        table(
-            "By μ·μ_s, μ_ct = 0 only: % within 0.05 % / 0.5 % / 5 % of U",
-            rows,
-        );
-        let mut rows = Vec::new();
-        let mut lo = 0.0;
-        for (i, &hi) in CUT_BANDS.iter().enumerate() {
-            let open = if i == 0 { "[" } else { "(" };
-            rows.push((format!("\\|φ\\| {open}{lo}°, {hi}°)"), &self.by_cut[i]));
-            lo = hi;
-        }
-        let mut lo = 0.0;
-        for (i, &hi) in SPEED_BANDS.iter().enumerate() {
-            rows.push((format!("U ({lo}, {hi}] m/s"), &self.by_speed[i]));
-            lo = hi;
-        }
-        for (i, label) in [
-            "spin: none",
-            "spin: cue-like",
-            "spin: uniform ±400 rad/s",
-            "spin: extreme, to 10⁴ rad/s",
-        ]
-        .into_iter()
-        .enumerate()
-        {
-            rows.push((label.to_string(), &self.by_spin[i]));
-        }
-        rows.push(("μ(v) (speed-dependent)".to_string(), &self.speed_dependent));
-        rows.push(("μ_ct > 0".to_string(), &self.cue_table));
-        table(
-            "By cut, speed, spin, friction law and μ_ct: % within 0.05 % / 0.5 % / 5 % of U",
-            rows,
-        );
         let _ = write!(
             out,
             "\n#### Worst max(\\|Δv\\|, R\\|Δω\\|)/U and worst throw error (object ball ≥ {} % of U) by μ·μ_s\n\n| μ·μ_s up to |",
@@ -526,17 +628,7 @@ impl Map {
         }
         out.push('\n');
         for (i, &hi) in MU_MU_S_BANDS.iter().enumerate() {
-            let c = &self.by_mu_mu_s[i];
-            let _ = write!(out, "| {hi} |");
-            for m in 0..MODELS.len() {
-                let _ = write!(
-                    out,
-                    " {:.2} %, {:.2}° |",
-                    100.0 * c.worst[m],
-                    c.worst_throw_moving[m]
-                );
-            }
-            out.push('\n');
+            let _ = writeln!(out, "| {hi} | {} |", worst_cells(&self.by_mu_mu_s[i]));
         }
         let _ = writeln!(
             out,
@@ -544,17 +636,7 @@ impl Map {
             100.0 * MIN_OBJECT_SPEED
         );
         for (m, (name, _)) in MODELS.iter().enumerate() {
-            let _ = writeln!(
-                out,
-                "| {name} | {:.3e} | {:.3}° | {:.3}° | {} / {} / {} | {} |",
-                self.all.worst[m],
-                self.all.worst_throw[m],
-                self.all.worst_throw_moving[m],
-                self.all.count - self.all.within[m][0],
-                self.all.count - self.all.within[m][1],
-                self.all.count - self.all.within[m][2],
-                self.all.failed[m]
-            );
+            let _ = writeln!(out, "| {name} | {} |", self.worst_model_cells(m));
         }
         let _ = writeln!(
             out,
@@ -638,4 +720,226 @@ impl Map {
         s.push_str("</svg>\n");
         s
     }
+}
+
+/// A share in percent, as the tables print it.
+fn percent(share: f64) -> String {
+    format!("{:.1}", 100.0 * share)
+}
+
+/// A share-table row after its label: the scenes, then per model the % within
+/// 0.05 % / 0.5 % / 5 % of U.
+fn share_cells(cell: &Cell) -> String {
+    let mut out = cell.count.to_string();
+    for m in 0..MODELS.len() {
+        let _ = write!(
+            out,
+            " | {} / {} / {}",
+            percent(cell.share(m, 0)),
+            percent(cell.share(m, 1)),
+            percent(cell.share(m, 2))
+        );
+    }
+    out
+}
+
+/// A row of the worst-error table after its band: per model the worst
+/// `max(|Δv|, R|Δω|)/U` in % and the worst throw error with the object ball moving.
+fn worst_cells(cell: &Cell) -> String {
+    (0..MODELS.len())
+        .map(|m| {
+            format!(
+                "{:.2} %, {:.2}°",
+                100.0 * cell.worst[m],
+                cell.worst_throw_moving[m]
+            )
+        })
+        .collect::<Vec<_>>()
+        .join(" | ")
+}
+
+/// A band edge in a figure key: `0.02` → `0-02`.
+fn key_number(x: f64) -> String {
+    x.to_string().replace('.', "-")
+}
+
+/// A model's name in a figure key: `Auto(1e-3)` → `auto-1e-3`.
+fn model_key(name: &str) -> String {
+    name.to_ascii_lowercase().replace('(', "-").replace(')', "")
+}
+
+/// The scene where model `m` errs most among those `filter` keeps, by
+/// `max(|Δv|, R|Δω|)/U`: its index in `scored` and its scores.
+pub fn worst_scene(
+    scored: &[Scored],
+    m: usize,
+    filter: impl Fn(&Scored) -> bool,
+) -> Option<(usize, &Scored)> {
+    scored
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| filter(s))
+        .max_by(|a, b| a.1.combined(m).total_cmp(&b.1.combined(m)))
+}
+
+/// The scene where model `m`'s throw errs most: its index in `scored` and its scores.
+pub fn worst_throw_scene(scored: &[Scored], m: usize) -> Option<(usize, &Scored)> {
+    let throw = |s: &Scored| s.errors[m].map_or(0.0, |e| e.throw_deg);
+    scored
+        .iter()
+        .enumerate()
+        .max_by(|a, b| throw(a.1).total_cmp(&throw(b.1)))
+}
+
+/// The band of μ·μ_s a scene falls in ([`MU_MU_S_BANDS`]).
+pub fn mu_mu_s_band(s: &Scored) -> usize {
+    band(s.scene.mu() * s.scene.scene.mu_s as f64, &MU_MU_S_BANDS)
+}
+
+/// How docs/accuracy-domain.md names a spin draw.
+pub fn spin_label(draw: SpinDraw) -> &'static str {
+    match draw {
+        SpinDraw::None => "no spin",
+        SpinDraw::CueLike => "cue-like spin",
+        SpinDraw::Uniform400 => "±400 rad/s spins",
+        SpinDraw::Extreme => "extreme spin",
+    }
+}
+
+/// A number as the docs print it, with a minus sign (−) for a negative one.
+fn signed(x: f64, decimals: usize) -> String {
+    format!("{x:.decimals$}").replace('-', "−")
+}
+
+impl DomainScene {
+    /// The scene as docs/accuracy-domain.md describes it: `U 0.294 m/s, φ 12.44°, ω
+    /// (339.07, 220.11, −66.20) rad/s, μ 0.9837, μ_s 0.9668, e* 0.8638, μ_ct 0, carom
+    /// ball`.
+    pub fn describe(&self) -> String {
+        let s = &self.scene;
+        let ball = if s.radius == 0.028575 {
+            "pool"
+        } else if s.radius == 0.02625 {
+            "snooker"
+        } else {
+            "carom"
+        };
+        let w = s.spin.map(|w| signed(w as f64, 2));
+        let mu = match self.friction {
+            FrictionLaw::Constant(mu) => format!("μ {mu:.4}"),
+            FrictionLaw::SpeedDependent { a, b, c } => {
+                format!("μ(v) = {a:.4} + {b:.4}·e^(−{c:.3}v)")
+            }
+        };
+        let mu_ct = if self.mu_ct == 0.0 {
+            "0".to_string()
+        } else {
+            format!("{:.3}", self.mu_ct)
+        };
+        format!(
+            "U {} m/s, φ {}°, ω ({}, {}, {}) rad/s, {mu}, μ_s {:.4}, e* {:.4}, μ_ct {mu_ct}, {ball} ball",
+            significant(s.speed(), 4),
+            signed(self.cut_deg, 2),
+            w[0],
+            w[1],
+            w[2],
+            s.mu_s,
+            s.restitution,
+        )
+    }
+}
+
+/// `x` to `digits` significant digits, fixed-point.
+fn significant(x: f64, digits: i32) -> String {
+    let decimals = (digits - 1 - x.abs().log10().floor() as i32).max(0) as usize;
+    format!("{x:.decimals$}")
+}
+
+/// The figures of docs/accuracy-domain.md's prose about single scenes and the spread
+/// across bands, `(key, value)` without the `accuracy-domain-` prefix: each model's worst
+/// scene (`worst-MODEL-scene`, [`DomainScene::describe`], with its index and errors),
+/// `Auto`'s worst throw scene, and `KimGrip`'s worst scenes below μ·μ_s = 0.2 (their
+/// error range in % of U, μ_ct range and spin draws).
+pub fn scene_figures(scored: &[Scored], map: &Map) -> Vec<(String, String)> {
+    let mut out = Vec::new();
+    for (m, (name, _)) in MODELS.iter().enumerate() {
+        let key = format!("worst-{}-scene", model_key(name));
+        if let Some((i, s)) = worst_scene(scored, m, |_| true) {
+            let e = s.errors[m].unwrap_or_default();
+            out.push((key.clone(), s.scene.describe()));
+            out.push((format!("{key}-index"), i.to_string()));
+            out.push((
+                format!("{key}-velocity"),
+                format!("{:.0}", 100.0 * e.velocity),
+            ));
+            out.push((format!("{key}-spin"), format!("{:.0}", 100.0 * e.spin)));
+            out.push((format!("{key}-throw"), format!("{:.1}", e.throw_deg)));
+            out.push((
+                format!("{key}-percent-2"),
+                format!("{:.2}", 100.0 * s.combined(m)),
+            ));
+        }
+        if let Some((i, s)) = worst_throw_scene(scored, m) {
+            let key = format!("worst-{}-throw-scene", model_key(name));
+            let e = s.errors[m].unwrap_or_default();
+            out.push((key.clone(), s.scene.describe()));
+            out.push((format!("{key}-index"), i.to_string()));
+            out.push((
+                format!("{key}-object-speed"),
+                format!("{:.0e}", s.object_speed),
+            ));
+            out.push((
+                format!("{key}-error"),
+                format!("{:.1e}", e.velocity.max(e.spin)),
+            ));
+        }
+    }
+    // KimGrip's worst scene in each band up to μ·μ_s = 0.2.
+    const KIM_GRIP: usize = 2;
+    let below = MU_MU_S_BANDS.iter().take_while(|&&hi| hi <= 0.2).count();
+    let worst: Vec<&Scored> = (0..below)
+        .filter_map(|b| worst_scene(scored, KIM_GRIP, |s| mu_mu_s_band(s) == b).map(|(_, s)| s))
+        .collect();
+    let range = |values: Vec<f64>, decimals: usize| {
+        let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        format!("{lo:.decimals$}–{hi:.decimals$}")
+    };
+    out.push((
+        "kimgrip-worst-to-0-2-percent".to_string(),
+        range(
+            worst.iter().map(|s| 100.0 * s.combined(KIM_GRIP)).collect(),
+            0,
+        ),
+    ));
+    out.push((
+        "kimgrip-worst-to-0-2-mu-ct".to_string(),
+        range(worst.iter().map(|s| s.scene.mu_ct as f64).collect(), 2),
+    ));
+    let mut spins: Vec<&str> = worst
+        .iter()
+        .map(|s| spin_label(s.scene.spin_draw))
+        .collect();
+    spins.dedup();
+    out.push(("kimgrip-worst-to-0-2-spins".to_string(), spins.join(" or ")));
+    // Shares across bands: KimGrip within 5 % up to μ·μ_s = 0.2, SeedExact within 5 %
+    // with μ_ct = 0 up to 0.11.
+    out.push((
+        "kimgrip-5-to-0-2".to_string(),
+        range(
+            (0..below)
+                .map(|b| 100.0 * map.by_mu_mu_s[b].share(KIM_GRIP, 2))
+                .collect(),
+            1,
+        ),
+    ));
+    let to_0_11 = MU_MU_S_BANDS.iter().take_while(|&&hi| hi <= 0.11).count();
+    let lowest = (0..to_0_11)
+        .map(|b| 100.0 * map.by_mu_mu_s_no_ct[b].share(3, 2))
+        .fold(f64::INFINITY, f64::min);
+    out.push((
+        "seedexact-5-no-ct-to-0-11".to_string(),
+        format!("{lowest:.1}"),
+    ));
+    out
 }

@@ -35,9 +35,19 @@ fn erratum_e1_object_ball_spin() {
     let impact = Impact::rolling([2.0, 0.0], 0.0286).unwrap();
     let r = reference(&params, &impact);
     close(r.object_ball.spin.y, -6.0, 0.05, "reference Ω_y");
+    cuesight_figures::record!(
+        "physics-e1-reference-spin",
+        "{}",
+        format!("{:.2}", r.object_ball.spin.y).replace('-', "−")
+    );
     for model in [Model::Kim, Model::KimGrip] {
         let out = collide(&params, &impact, model).unwrap();
         close(out.object_ball.spin.y as f64, -6.0, 0.05, model.name());
+        cuesight_figures::record!(
+            &format!("physics-e1-{}-spin", model.name()),
+            "{}",
+            format!("{:.2}", out.object_ball.spin.y).replace('-', "−")
+        );
         assert!(
             (out.object_ball.spin.y as f64 + 11.1).abs() > 4.0,
             "{model:?} reproduces the uncorrected sign"
@@ -109,6 +119,7 @@ fn hop_height() {
     let r = reference(&params, &impact);
     let height = r.cue_ball.velocity.z.powi(2) / (2.0 * G);
     close(height * 100.0, 1.27, 0.005, "reference hop height (cm)");
+    cuesight_figures::record!("physics-hop-height", "{:.3}", height * 100.0);
     for e in [0.9f32, 0.95] {
         let params = params.with_restitution(e).unwrap();
         let r = reference(&params, &impact);
@@ -120,6 +131,11 @@ fn hop_height() {
         );
     }
     let with_table = reference(&params.with_mu_s(0.3).unwrap(), &impact);
+    cuesight_figures::record!(
+        "physics-hop-height-with-table",
+        "{:.2}",
+        with_table.cue_ball.velocity.z.powi(2) / (2.0 * G) * 100.0
+    );
     close(
         with_table.cue_ball.velocity.z,
         0.5 * (1.0 + 0.05 * 0.3 / 2.0),

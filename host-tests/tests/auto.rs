@@ -4,7 +4,7 @@
 //! tolerance in ≥ 99 %. The estimates were calibrated on another seed.
 
 use cuesight::{collide, error_estimate, select_model, Model};
-use cuesight_host::compare::{reference, scene_error};
+use cuesight_host::compare::{reference, scene_error, thousands};
 use cuesight_host::grid::{scenes, Scene};
 use cuesight_host::reference::ReferenceOutcome;
 
@@ -36,6 +36,11 @@ fn estimates_bound_errors_and_auto_meets_tolerance() {
             model.name(),
             100.0 * bounded / n
         );
+        cuesight_figures::record!(
+            &format!("physics-auto-estimate-bounds-{}", model.name()),
+            "{}",
+            percent(bounded / n)
+        );
         assert!(bounded >= 0.99 * n, "{model:?}: {bounded}");
     }
     for tolerance in [1e-2f32, 1e-3, 1e-4, 1e-5] {
@@ -60,9 +65,29 @@ fn estimates_bound_errors_and_auto_meets_tolerance() {
                 .collect::<Vec<_>>()
                 .join(" ")
         );
+        // docs/physics.md §8: the share met and the scenes per tier of the ladder.
+        let key = format!("physics-auto-{tolerance:e}").replace('.', "-");
+        cuesight_figures::record!(&format!("{key}-met"), "{}", percent(met as f64 / n));
+        let tier = |model: Model| used[Model::ALL.iter().position(|m| *m == model).unwrap()];
+        cuesight_figures::record!(
+            &format!("{key}-tiers"),
+            "{}/{}/{}",
+            thousands(tier(Model::Ideal)),
+            thousands(tier(Model::KimGrip)),
+            thousands(tier(Model::Exact))
+        );
         if tolerance >= 1e-4 {
             assert!(met as f64 >= 0.99 * n, "Auto {tolerance}: {met}");
         }
+    }
+}
+
+/// A share as docs/physics.md prints it: `100` when every scene, else two decimals.
+fn percent(share: f64) -> String {
+    if share == 1.0 {
+        "100".to_string()
+    } else {
+        format!("{:.2}", 100.0 * share)
     }
 }
 
@@ -107,6 +132,9 @@ fn auto_never_picks_ideal_where_friction_throws_a_thin_cut() {
     for (name, params, impact) in cases {
         let reference = cuesight_host::reference::collide(&params, &impact).throw_angle_deg();
         assert!(reference > 3.0, "{name}: reference throw {reference}°");
+        if name.contains("--roll") {
+            cuesight_figures::record!("physics-auto-thin-cut-reference-throw", "{reference:.2}");
+        }
         for tolerance in [1e-2f32, 1e-3] {
             let (tier, _) = select_model(&params, &impact, tolerance);
             assert_ne!(tier, Model::Ideal, "{name}, tolerance {tolerance}");

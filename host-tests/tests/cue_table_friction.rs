@@ -46,6 +46,13 @@ fn models_track_the_reference_with_cue_table_friction() {
         let exact = summary(Model::Exact, true);
         println!("μ_ct {mu_ct}: KimGrip {kim_grip}");
         println!("μ_ct {mu_ct}: Exact (sliding) {exact}");
+        let key = format!("physics-cue-table-{mu_ct}").replace('.', "-");
+        for (key, value) in kim_grip.figures(&format!("{key}-kim-grip"), [3, 3, 3], [3, 3, 3]) {
+            cuesight_figures::record!(&key, "{value}");
+        }
+        for (key, value) in exact.figures(&format!("{key}-exact-sliding"), [4, 4, 4], [4, 4, 4]) {
+            cuesight_figures::record!(&key, "{value}");
+        }
         assert!(
             kim_grip.max.velocity <= 0.005
                 && kim_grip.max.spin <= 0.01

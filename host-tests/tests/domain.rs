@@ -23,7 +23,9 @@
 //! tolerance — is printed (`-- --nocapture`) and documented, not asserted.
 //! The full tables: `cargo run --release -p cuesight-host --example accuracy_domain`.
 
-use cuesight_host::domain::{sample, score_all, Map, AUTO, GRID, MODELS, MU_MU_S_BANDS};
+use cuesight_host::domain::{
+    sample, scene_figures, score_all, Map, AUTO, GRID, MODELS, MU_MU_S_BANDS,
+};
 use std::time::Instant;
 
 const SEED: u64 = 16;
@@ -42,6 +44,14 @@ fn domain_map() {
         start.elapsed().as_secs_f64(),
         map.markdown()
     );
+    // The tables of docs/accuracy-domain.md, from the same function as the example's.
+    for (key, value) in map
+        .figures()
+        .into_iter()
+        .chain(scene_figures(&scored, &map))
+    {
+        cuesight_figures::record!(&format!("accuracy-domain-{key}"), "{value}");
+    }
 
     // Coverage: every bin populated (expected ≈ 1,000 per (μ, μ_s) cell).
     assert_eq!(map.all.count, SCENES);

@@ -137,6 +137,8 @@ fn kim_grip_is_continuous_across_the_grip_boundary() {
         assert!(jump < 2e-5, "jump {jump} at μ = {lo}..{hi} for {s:?}");
     }
     println!("{crossings} boundary crossings, largest jump {worst:e} U");
+    cuesight_figures::record!("physics-kim-grip-boundary-crossings", "{crossings}");
+    cuesight_figures::record!("physics-kim-grip-boundary-jump", "{worst:.1e}");
     assert!(
         crossings > 100,
         "only {crossings} scenes cross the boundary"

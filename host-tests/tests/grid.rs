@@ -6,7 +6,7 @@
 //! The figures are printed and written to `$CARGO_TARGET_TMPDIR/grid-report.txt`.
 
 use cuesight::{collide, Model, Regime};
-use cuesight_host::compare::{reference, scene_error, Summary};
+use cuesight_host::compare::{reference, scene_error, thousands, Summary};
 use cuesight_host::grid::{scenes, Scene};
 use cuesight_host::reference::{ReferenceOutcome, ReferenceRegime};
 use std::fmt::Write as _;
@@ -114,6 +114,67 @@ fn grid_accuracy_and_invariants() {
         .unwrap();
 
     println!("{report}");
+
+    // The figures of docs/physics.md §2, §4, §6 and §7.
+    record_count("physics-grid-scenes", grid.len());
+    record_count("physics-grid-gripping", gripping);
+    record_count("physics-grid-sliding", grid.len() - gripping);
+    record_count(
+        "physics-grid-kimgrip-regime-agrees",
+        grid.len() - regime_mismatch,
+    );
+    record_summary("physics-grid-kimgrip-all", &kim_grip, [3, 3, 3], [3, 3, 3]);
+    record_summary(
+        "physics-grid-kimgrip-sliding",
+        &errors(Model::KimGrip, &sliding),
+        [3, 3, 3],
+        [3, 3, 3],
+    );
+    record_summary(
+        "physics-grid-kimgrip-gripping",
+        &errors(Model::KimGrip, &grips),
+        [3, 3, 3],
+        [3, 3, 3],
+    );
+    record_summary(
+        "physics-grid-exact-sliding",
+        &exact_sliding,
+        [4, 4, 4],
+        [4, 4, 4],
+    );
+    record_summary(
+        "physics-grid-exact-gripping",
+        &errors(Model::Exact, &grips),
+        [4, 4, 4],
+        [4, 4, 4],
+    );
+    record_summary(
+        "physics-grid-kim-sliding",
+        &errors(Model::Kim, &sliding),
+        [2, 2, 2],
+        [3, 2, 3],
+    );
+    record_summary(
+        "physics-grid-kim-gripping",
+        &errors(Model::Kim, &grips),
+        [1, 0, 1],
+        [1, 0, 1],
+    );
+    // How far inside the foundation tolerances (0.5 %, 1 %, 0.25°) KimGrip stays, and
+    // Exact inside the fidelity ladder's 0.02 %, rounded down.
+    let spare = (0.005 / kim_grip.max.velocity)
+        .min(0.01 / kim_grip.max.spin)
+        .min(0.25 / kim_grip.max.throw_deg);
+    cuesight_figures::record!(
+        "physics-grid-kimgrip-spare",
+        "{:.1}",
+        (10.0 * spare).floor() / 10.0
+    );
+    cuesight_figures::record!(
+        "physics-grid-exact-spare",
+        "{}",
+        (2e-4 / exact_sliding.max.velocity).floor()
+    );
     let path = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("grid-report.txt");
     std::fs::write(&path, &report).expect("write grid report");
 
@@ -143,6 +204,16 @@ fn grid_accuracy_and_invariants() {
         regime_mismatch * 50 < grid.len(),
         "{regime_mismatch} regime mismatches"
     );
+}
+
+fn record_count(key: &str, n: usize) {
+    cuesight_figures::record!(key, "{}", thousands(n));
+}
+
+fn record_summary(key: &str, s: &Summary, max: [usize; 3], rms: [usize; 3]) {
+    for (key, value) in s.figures(key, max, rms) {
+        cuesight_figures::record!(&key, "{value}");
+    }
 }
 
 #[test]

@@ -94,6 +94,15 @@ fn contact_duration_is_hertzian() {
     );
     assert!((250e-6..=300e-6).contains(&t1) && (250e-6..=300e-6).contains(&t2));
     let ratio = duration(0.01) / t1;
+    // docs/low-speed-limit.md §1 (the solver's durations, μs) and §5.
+    cuesight_figures::record!(
+        "low-speed-limit-duration-0-01",
+        "{:.1}",
+        duration(0.01) * 1e6
+    );
+    cuesight_figures::record!("low-speed-limit-duration-1", "{:.1}", t1 * 1e6);
+    cuesight_figures::record!("low-speed-limit-duration-2", "{:.1}", t2 * 1e6);
+    cuesight_figures::record!("low-speed-limit-duration-1-us", "{:.0}", t1 * 1e6);
     assert!(
         (ratio / 100f64.powf(0.2) - 1.0).abs() < 1e-3,
         "ratio {ratio}"
@@ -128,6 +137,7 @@ fn step_halving_converges() {
         }
     }
     println!("largest change when halving the step: {worst:.2e} U");
+    cuesight_figures::record!("low-speed-limit-step-halving", "{worst:.1e}");
     assert!(worst < 1e-5, "{worst:e}");
 }
 
@@ -147,6 +157,8 @@ fn without_gravity_it_is_the_impulsive_reference() {
         }
     }
     println!("g = 0, largest difference from the reference: {worst:.2e} U");
+    cuesight_figures::record!("low-speed-limit-without-gravity", "{worst:.1e}");
+    cuesight_figures::record!("low-speed-limit-without-gravity-1", "{worst:.0e}");
     assert!(worst < 1e-6, "{worst:e}");
 }
 
@@ -160,6 +172,7 @@ fn agrees_with_the_impulsive_reference_at_2_m_per_s() {
         worst = worst.max(error(&s, 2.0));
     }
     println!("largest difference at 2 m/s: {:.3} %", 100.0 * worst);
+    cuesight_figures::record!("low-speed-limit-at-2-m-s", "{:.3}", 100.0 * worst);
     assert!(worst < 0.002, "{worst}");
 
     let s = Scenario::pool(SpinKind::Roll, 0.0, 0.05);
@@ -218,6 +231,14 @@ fn low_speed_limit_is_about_0_4_m_per_s() {
         100.0 * worst[2],
         100.0 * worst[3]
     );
+    for (key, error) in [
+        ("low-speed-limit-largest-at-0-39", worst[0]),
+        ("low-speed-limit-largest-at-0-42", worst[1]),
+        ("low-speed-limit-largest-to-60-at-0-35", worst[2]),
+        ("low-speed-limit-largest-to-60-at-0-37", worst[3]),
+    ] {
+        cuesight_figures::record!(key, "{:.3}", 100.0 * error);
+    }
     assert!(worst[0] > 0.01 && worst[1] < 0.01, "{worst:?}");
     assert!(worst[2] > 0.01 && worst[3] < 0.01, "{worst:?}");
 }
@@ -257,5 +278,8 @@ fn moving_normal_conserves_energy_and_turns_the_impulse() {
         ..s.params()
     };
     let d = s.compare_with(&flat, 2.0, &moving).unwrap().deviation.max();
+    // docs/low-speed-limit.md §7, docs/physics.md §9.
+    cuesight_figures::record!("low-speed-limit-moving-normal-60", "{:.3}", 100.0 * d);
+    cuesight_figures::record!("physics-moving-normal-60", "{:.2}", 100.0 * d);
     assert!((0.0040..0.0047).contains(&d), "{d}");
 }

@@ -36,6 +36,7 @@ fn step_size_convergence() {
         worst = worst.max(change);
     }
     println!("largest change when halving the step: {worst:.3e}");
+    cuesight_figures::record!("physics-reference-step-halving", "{worst:.1e}");
     assert!(worst < 1e-6, "step-size change {worst}");
 }
 

@@ -14,7 +14,7 @@
 //! figures quoted in `docs/physics.md` §7.
 
 use cuesight::{collide, collide_f64, FrictionLaw, Impact, Model, Outcome, Params, Regime};
-use cuesight_host::compare::{reference_with, scene_error, SceneError, Summary};
+use cuesight_host::compare::{reference_with, scene_error, thousands, SceneError, Summary};
 use cuesight_host::grid::{scenes, Scene};
 use cuesight_host::reference::{ReferenceConfig, ReferenceOutcome, ReferenceRegime};
 
@@ -94,6 +94,14 @@ fn precise(s: &Summary) -> String {
     )
 }
 
+/// Records maxima as §7's table prints them: `KEY-velocity`, `KEY-spin` (of U) and
+/// `KEY-throw` (degrees), two significant digits.
+fn record_precise(key: &str, max: SceneError) {
+    cuesight_figures::record!(&format!("{key}-velocity"), "{:.1e}", max.velocity);
+    cuesight_figures::record!(&format!("{key}-spin"), "{:.1e}", max.spin);
+    cuesight_figures::record!(&format!("{key}-throw"), "{:.1e}", max.throw_deg);
+}
+
 fn sliding(s: &Solved) -> bool {
     s.reference.regime == ReferenceRegime::Sliding
 }
@@ -135,6 +143,29 @@ fn matches_the_seed_physics_to_quadrature_precision() {
         })
         .count();
     println!("regime differs from the reference (along x) in {regime_mismatch} scenes");
+    // docs/physics.md §7's table.
+    for (key, s) in [
+        ("physics-seed-exact-along-x-f32-sliding", &f32_sliding),
+        ("physics-seed-exact-along-x-f32-gripping", &f32_gripping),
+    ] {
+        record_precise(key, s.max);
+    }
+    let f64_all = SceneError {
+        velocity: f64_sliding.max.velocity.max(f64_gripping.max.velocity),
+        spin: f64_sliding.max.spin.max(f64_gripping.max.spin),
+        throw_deg: f64_sliding.max.throw_deg.max(f64_gripping.max.throw_deg),
+    };
+    record_precise("physics-seed-exact-along-x-f64", f64_all);
+    cuesight_figures::record!(
+        "physics-seed-exact-along-x-max",
+        "{:.0e}",
+        measure(&f32_sliding.max).max(measure(&f32_gripping.max))
+    );
+    cuesight_figures::record!(
+        "physics-seed-exact-regime-agrees",
+        "{}",
+        thousands(grid.len() - regime_mismatch)
+    );
     for (what, s, tolerance) in [
         ("f32 sliding", f32_sliding, SEED_PHYSICS_TOLERANCE),
         ("f32 gripping", f32_gripping, SEED_PHYSICS_TOLERANCE),
@@ -183,6 +214,7 @@ fn matches_the_seed_physics_with_speed_dependent_friction() {
         "SeedExact vs reference along x, Marlow μ(v), f32: {}",
         precise(&errors)
     );
+    record_precise("physics-seed-exact-along-x-marlow", errors.max);
     // The 4-panel rule's relative error 2.2e-6 on the slip integral, times the friction
     // impulse (≤ 0.12 × 2 U) times 2.5, adds 7e-7 to the constant-μ bound.
     assert!(
@@ -210,6 +242,22 @@ fn cost_of_the_table_direction_against_the_vector_reference() {
         "SeedExact vs vector reference, gripping: {}",
         summary(&vector, collide, gripping)
     );
+    // docs/physics.md §6 and §7.
+    for (key, s) in [
+        ("physics-grid-seed-exact-all", all),
+        (
+            "physics-grid-seed-exact-sliding",
+            summary(&vector, collide, sliding),
+        ),
+        (
+            "physics-grid-seed-exact-gripping",
+            summary(&vector, collide, gripping),
+        ),
+    ] {
+        for (key, value) in s.figures(key, [3, 3, 3], [3, 3, 3]) {
+            cuesight_figures::record!(&key, "{value}");
+        }
+    }
     let mut direction_cost = 0.0f64;
     for (v, x) in vector.iter().zip(&seed_physics) {
         let (params, impact) = (v.scene.params(), v.scene.impact());
@@ -236,6 +284,16 @@ fn cost_of_the_table_direction_against_the_vector_reference() {
     }
     println!(
         "reference along x vs vector (the cost of eq. (7)): max {:.4} %",
+        100.0 * direction_cost
+    );
+    cuesight_figures::record!(
+        "physics-table-direction-cost",
+        "{:.4}",
+        100.0 * direction_cost
+    );
+    cuesight_figures::record!(
+        "physics-table-direction-cost-2",
+        "{:.2}",
         100.0 * direction_cost
     );
 }
@@ -311,6 +369,8 @@ fn continuous_across_the_stick_boundary() {
         assert!(jump <= 2e-6, "jump {jump} at μ = {lo} in {scene:?}");
     }
     println!("stick boundary: {crossings} crossings, largest jump {largest:e} U");
+    cuesight_figures::record!("physics-seed-exact-stick-crossings", "{crossings}");
+    cuesight_figures::record!("physics-seed-exact-stick-jump", "{largest:.0e}");
     assert!(crossings >= 100, "{crossings}");
 }
 
@@ -369,5 +429,10 @@ fn erratum_e1_object_ball_spin() {
     println!(
         "E1 anchor: SeedExact Ω_y = {omega:.4} rad/s, reference {:.4}",
         r.object_ball.spin.y
+    );
+    cuesight_figures::record!(
+        "physics-seed-exact-e1-spin",
+        "{}",
+        format!("{omega:.3}").replace('-', "−")
     );
 }

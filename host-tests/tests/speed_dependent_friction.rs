@@ -49,6 +49,8 @@ fn tp_a24_throw_with_marlow_friction() {
             .unwrap()
             .throw_angle_deg() as f64;
         println!("TP A.24 {name}: reference {r:.3} deg, KimGrip {k:.3} deg");
+        cuesight_figures::record!(&format!("physics-tp-a24-{name}-reference"), "{r:.3}");
+        cuesight_figures::record!(&format!("physics-tp-a24-{name}-kim-grip"), "{k:.3}");
         close(k, r, 0.02, &format!("KimGrip {name} vs reference"));
     }
     assert!(
@@ -88,6 +90,14 @@ fn kim_grip_tracks_the_reference_with_speed_dependent_friction() {
     );
     println!("Marlow fit (a 9.951e-3, b 0.108, c 1.088):   {marlow}");
     println!("second fit (a 0.016, b 0.219, c 0.691):      {other}");
+    for (key, s) in [
+        ("physics-speed-dependent-marlow", &marlow),
+        ("physics-speed-dependent-second-fit", &other),
+    ] {
+        for (key, value) in s.figures(key, [3, 3, 3], [3, 3, 3]) {
+            cuesight_figures::record!(&key, "{value}");
+        }
+    }
     for s in [marlow, other] {
         assert!(
             s.max.velocity <= 0.005 && s.max.spin <= 0.01 && s.max.throw_deg <= 0.25,
