@@ -9,6 +9,7 @@
 //! same `f32` computations). Keys only one side has are listed once, not failed: the device leaves
 //! the scene echo and pocket names to the host, and the CLI's JSON is its own.
 
+use cuesight_figures::thousands;
 use std::collections::BTreeSet;
 use std::process::Command;
 
@@ -175,17 +176,4 @@ fn shot_request_answers_as_the_cli() {
     cuesight_figures::record!("protocol-shot-cli-equal", "{compared}");
     cuesight_figures::record!("protocol-shot-cli-values", "{}", thousands(values));
     cuesight_figures::record!("protocol-shot-cli-refused", "{both_refused}");
-}
-
-/// `n` with a comma every three digits, as the docs print it.
-fn thousands(n: usize) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }

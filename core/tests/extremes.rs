@@ -13,6 +13,7 @@ mod common;
 use common::*;
 use cuesight::strike::{strike, Cue, TipOffset};
 use cuesight::{collide, collide_f64, FrictionLaw, Impact, Model, Outcome, Params, Regime, Vec3};
+use cuesight_figures::thousands;
 
 /// Every model, `Auto` at a loose and a tight tolerance.
 const ALL: [Model; 7] = [
@@ -717,17 +718,4 @@ fn strike_limits_chain_into_every_model() {
             }
         }
     }
-}
-
-/// `n` with a comma every three digits, as the docs print it.
-fn thousands(n: usize) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }

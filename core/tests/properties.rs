@@ -27,6 +27,7 @@ mod common;
 
 use common::*;
 use cuesight::{collide, FrictionLaw, Impact, Model, Outcome, Params};
+use cuesight_figures::thousands;
 use proptest::prop_assert;
 use proptest::strategy::Strategy;
 use proptest::test_runner::{contextualize_config, TestCaseError, TestRunner};
@@ -201,17 +202,6 @@ fn report(name: &str, figures: &[(Model, Figures)]) {
 /// Records the figures docs/reliability.md quotes (its table of the largest deviations),
 /// as `reliability-properties-MODEL-WHAT`.
 fn record(figures: &[(Model, Figures)]) {
-    fn thousands(n: u64) -> String {
-        let digits = n.to_string();
-        let mut out = String::new();
-        for (i, c) in digits.chars().enumerate() {
-            if i > 0 && (digits.len() - i) % 3 == 0 {
-                out.push(',');
-            }
-            out.push(c);
-        }
-        out
-    }
     // Two significant digits, and a plain 0 for none at all.
     let sci = |x: f64| {
         if x == 0.0 {

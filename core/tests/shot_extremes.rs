@@ -19,6 +19,7 @@ use cuesight::strike::TipOffset;
 use cuesight::table::{BallSet, Scene, Table};
 use cuesight::travel::{Cloth, Motion, GRAVITY};
 use cuesight::{Model, Vec3};
+use cuesight_figures::thousands;
 use shot_common::*;
 
 const MODELS: [Model; 5] = [
@@ -1438,17 +1439,4 @@ fn solve_aim_at_the_extremes_and_mirrored() {
         "{}",
         answers[3]
     );
-}
-
-/// `n` with a comma every three digits, as the docs print it.
-fn thousands(n: usize) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }

@@ -41,6 +41,7 @@ use cuesight::strike::{Cue, TipOffset};
 use cuesight::table::{BallSet, Scene};
 use cuesight::travel::{Cloth, Motion};
 use cuesight::{FrictionLaw, Model, Params, Vec3};
+use cuesight_figures::thousands;
 use proptest::prelude::*;
 use proptest::test_runner::{contextualize_config, TestCaseError, TestRunner};
 use shot_common::*;
@@ -901,17 +902,4 @@ fn solved_aims_pocket_the_ball() {
     cuesight_figures::record!("reliability-shot-aim-miss-um", "{:.1}", f.worst_miss * 1e6);
     cuesight_figures::record!("reliability-shot-aim-cot", "{:.0}", f.worst_cot);
     cuesight_figures::record!("reliability-shot-aim-of-rounding", "{:.3}", f.of_rounding);
-}
-
-/// `n` with a comma every three digits, as the docs print it.
-fn thousands(n: u64) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }

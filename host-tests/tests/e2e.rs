@@ -41,6 +41,7 @@
 //! `cargo test -p cuesight-host --test e2e -- --ignored --nocapture`
 //! (`CUESIGHT_FIRMWARE_ELF` overrides the ELF path, `DEFMT_PRINT` the log decoder).
 
+use cuesight_figures::thousands;
 use std::collections::{BTreeMap, VecDeque};
 use std::path::Path;
 use std::process::ExitStatus;
@@ -1413,18 +1414,6 @@ fn run_instance(index: usize, instances: usize, elf: &Path, defmt_print: Option<
     device.shutdown()
 }
 
-fn thousands(n: usize) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
-}
-
 #[test]
 #[ignore = "boots the release firmware in QEMU: run by `cargo xtask test` after the firmware build"]
 fn firmware_in_qemu_answers_as_the_host_session_and_survives_hostile_frames() {
@@ -1505,7 +1494,7 @@ fn firmware_in_qemu_answers_as_the_host_session_and_survives_hostile_frames() {
          summed over the instances",
         thousands(frames),
         bytes as f64 / 1e6,
-        thousands(tallies.values().map(|t| t.answers).sum()),
+        thousands(tallies.values().map(|t| t.answers).sum::<usize>()),
         thousands(errors),
         bytes as f64 / 1e3 / wall,
     );

@@ -8,6 +8,7 @@
 //! and runs this with `CUESIGHT_FIRMWARE_ELF` pointing at it:
 //! `cargo test -p cuesight-host --test e2e_shot -- --ignored --nocapture`.
 
+use cuesight_figures::thousands;
 use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
 
@@ -155,17 +156,4 @@ fn firmware_answers_shot_requests_as_the_host_session() {
     cuesight_figures::record!("protocol-e2e-shot-guided", "{guided}");
     cuesight_figures::record!("protocol-e2e-shot-refused", "{refused}");
     cuesight_figures::record!("protocol-e2e-shot-peak-stack", "{}", thousands(peak));
-}
-
-/// `n` with a comma every three digits, as the docs print it.
-fn thousands(n: u32) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }

@@ -15,6 +15,7 @@
 //! largest deviations.
 
 use cuesight::{collide, FrictionLaw, Model};
+use cuesight_figures::thousands;
 use cuesight_host::compare::{reference, scene_error, widen, SceneError};
 use cuesight_host::grid::{Scene, SpinKind};
 use cuesight_host::reference::{ReferenceOutcome, ReferenceParams, ReferenceRegime};
@@ -223,19 +224,6 @@ fn record(prefix: &str, w: &Worst) {
     cuesight_figures::record!(&key("exact-sliding"), "{:.4}", 100.0 * w.exact_sliding);
     cuesight_figures::record!(&key("exact-sliding-cases"), "{}", thousands(w.sliding));
     cuesight_figures::record!(&key("momentum"), "{:.0e}", w.momentum);
-}
-
-/// `n` with a comma every three digits, as the docs print it.
-fn thousands(n: usize) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }
 
 #[test]

@@ -21,6 +21,7 @@ mod common;
 use common::*;
 use cuesight::strike::{Cue, TipOffset};
 use cuesight::{Error as CoreError, Field, Params};
+use cuesight_figures::thousands;
 use cuesight_sensors::lsm6dsox::{
     trimmed_odr_hz, DataReady, Error, ACCEL_FULL_SCALE_MPS2, ADDRESS_SA0_HIGH, ADDRESS_SA0_LOW,
     NOMINAL_ODR_HZ, RESET_POLLS, STANDARD_GRAVITY, WHO_AM_I_VALUE,
@@ -1208,17 +1209,4 @@ fn strike_at_the_cue_speed_limits() {
             }
         }
     }
-}
-
-/// `n` with a comma every three digits, as the docs print it.
-fn thousands(n: u32) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }

@@ -57,6 +57,7 @@ mod common;
 use common::*;
 use cuesight::strike::{Cue, TipOffset};
 use cuesight::{Error as CoreError, Field, Params};
+use cuesight_figures::thousands;
 use cuesight_sensors::lsm6dsox::{trimmed_odr_hz, DataReady, STANDARD_GRAVITY};
 use cuesight_sensors::{
     estimate, estimate_raw, estimate_raw_with_pitch, estimate_with_pitch, Axis, ImpactTrigger,
@@ -1123,17 +1124,4 @@ fn constant_pitch_rate_is_removed_as_gyro_bias() {
         started.elapsed().as_secs_f64(),
     );
     cuesight_figures::record!("reliability-sensors-pitch-worst", "{worst:.2}");
-}
-
-/// `n` with a comma every three digits, as the docs print it.
-fn thousands(n: usize) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }

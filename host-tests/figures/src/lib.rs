@@ -42,6 +42,28 @@ macro_rules! record {
     };
 }
 
+/// An integer with a comma every three digits, as the docs print counts: `136,679`.
+pub fn thousands(n: impl Display) -> String {
+    let text = n.to_string();
+    let (sign, digits) = match text.strip_prefix('-') {
+        Some(digits) => ("\u{2212}", digits),
+        None => ("", text.as_str()),
+    };
+    let mut out = String::from(sign);
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// `x` to `decimals` places with the minus sign (U+2212) the docs print: `−0.036`.
+pub fn signed(x: f64, decimals: usize) -> String {
+    format!("{x:.decimals$}").replace('-', "\u{2212}")
+}
+
 /// Where figures are kept: `$CUESIGHT_FIGURES_DIR`, else `target/figures` at the
 /// workspace root.
 pub fn dir() -> PathBuf {
@@ -112,6 +134,17 @@ pub fn record_from(package: &str, target: &str, runnable: bool, key: &str, value
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn formats() {
+        assert_eq!(thousands(0u32), "0");
+        assert_eq!(thousands(999usize), "999");
+        assert_eq!(thousands(1000u64), "1,000");
+        assert_eq!(thousands(136_679usize), "136,679");
+        assert_eq!(thousands(-16_394i32), "\u{2212}16,394");
+        assert_eq!(signed(-0.0364, 3), "\u{2212}0.036");
+        assert_eq!(signed(2.5, 2), "2.50");
+    }
 
     #[test]
     fn keys() {

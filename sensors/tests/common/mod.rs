@@ -3,6 +3,9 @@
 //! checks every `Ok` estimate must pass, and the fixed proptest configuration.
 #![allow(dead_code)]
 
+// Not every test target that includes this module formats figures.
+#[allow(unused_imports)]
+pub use cuesight_figures::{signed, thousands};
 use cuesight_sensors::lsm6dsox::STANDARD_GRAVITY;
 use cuesight_sensors::{StrokeConfig, StrokeEstimate};
 
@@ -175,22 +178,4 @@ pub fn config(cases: u32, seed: u64) -> proptest::test_runner::Config {
         max_shrink_iters: 4096,
         ..Config::default()
     }
-}
-
-/// `n` as `docs/` prints it, with thousands separators: 5,061.
-pub fn thousands(n: usize) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
-}
-
-/// `x` to `decimals` places as `docs/` prints it, with a minus sign (U+2212): −0.036.
-pub fn signed(x: f64, decimals: usize) -> String {
-    format!("{x:.decimals$}").replace('-', "\u{2212}")
 }
