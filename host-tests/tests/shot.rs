@@ -66,6 +66,8 @@ fn thirty_degree_rule() {
             (best_cut, best) = (cut, a);
         }
     }
+    cuesight_figures::record!("shot-thirty-degree-max", "{best:.3}");
+    cuesight_figures::record!("shot-thirty-degree-max-at", "{best_cut:.1}");
     assert!((best - 33.749).abs() < 0.005, "max {best}");
     assert!((best_cut - 28.126).abs() < 0.1, "at {best_cut}");
 }
@@ -215,5 +217,11 @@ fn inverse_aim_round_trip_and_reference_agreement() {
         "{solved}/{} solved; worst round-trip miss {worst_self:.2e} deg, worst reference-chain miss {worst_reference:.4} deg, largest correction {largest_correction:.2} mm",
         all.len()
     );
+    cuesight_figures::record!("shot-aim-scenes", "{}", all.len());
+    cuesight_figures::record!("shot-aim-solved", "{solved}");
+    cuesight_figures::record!("shot-aim-unsolved", "{}", all.len() - solved);
+    cuesight_figures::record!("shot-aim-round-trip-miss", "{worst_self:.2e}");
+    cuesight_figures::record!("shot-aim-reference-miss", "{worst_reference:.4}");
+    cuesight_figures::record!("shot-aim-correction-max", "{largest_correction:.1}");
     assert!(solved >= 40, "only {solved} solved");
 }
