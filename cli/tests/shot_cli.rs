@@ -60,6 +60,14 @@ fn temp(name: &str) -> PathBuf {
 #[test]
 fn json_has_the_documented_keys() {
     let v = json(&["--scene", &scene("cut_to_corner.toml")]);
+    // docs/shot-cli.md: the solved aim to play back, and the cue ball's hop.
+    cuesight_figures::record!("shot-cli-aim", "{:.3}", number(&v, "/stroke/aim_deg"));
+    cuesight_figures::record!(
+        "shot-cli-hop",
+        "{:.1} mm lasts {:.0} ms",
+        number(&v, "/cue_ball/hop_height") * 1e3,
+        number(&v, "/cue_ball/air_time") * 1e3
+    );
     for key in [
         "mode",
         "table",
