@@ -41,6 +41,9 @@ fn kappa_for(eta: f64) -> f64 {
 #[test]
 fn eta_one_reverses_the_slip_and_doubles_the_rigid_ceiling() {
     let params = ReferenceParams::constant(0.5, 1.0, 0.3, R, M);
+    // docs/calibration.md §7's checks: the throws, closed form and solver, and the
+    // largest relative change of kinetic energy.
+    let (mut throws, mut closed_forms, mut energy) = (Vec::new(), Vec::new(), 0.0_f64);
     for cut in [10.0_f64, 20.0, 30.0] {
         let out = stun(&params, 2.0, cut, &compliant(kappa_for(1.0)));
         let t = f64::to_radians(cut).tan();
@@ -62,7 +65,21 @@ fn eta_one_reverses_the_slip_and_doubles_the_rigid_ceiling() {
         let after = out.kinetic_energy(M, R);
         // (Störmer–Verlet at ω_t dt ≤ 0.01: second-order error ~1e-5.)
         assert!((after - before).abs() < 1e-5 * before, "{before} {after}");
+        throws.push(format!("{:.5}°", out.throw_angle_deg()));
+        closed_forms.push(format!("{expected:.5}°"));
+        energy = energy.max((after - before).abs() / before);
     }
+    cuesight_figures::record!(
+        "calibration-compliance-eta-1-throw",
+        "{}",
+        throws.join(" / ")
+    );
+    cuesight_figures::record!(
+        "calibration-compliance-eta-1-closed-form",
+        "{}",
+        closed_forms.join(" / ")
+    );
+    cuesight_figures::record!("calibration-compliance-eta-1-energy", "{energy:.1e}");
 }
 
 /// At η = 2 the stuck tangential oscillator makes a whole period over the impact
@@ -71,15 +88,18 @@ fn eta_one_reverses_the_slip_and_doubles_the_rigid_ceiling() {
 #[test]
 fn eta_two_gives_no_net_friction_impulse() {
     let params = ReferenceParams::constant(1.0, 1.0, 0.3, R, M);
+    let mut worst = 0.0_f64;
     for cut in [10.0_f64, 20.0, 30.0] {
         let out = stun(&params, 3.0, cut, &compliant(kappa_for(2.0)));
         println!("cut {cut}: throw {:.6} deg", out.throw_angle_deg());
+        worst = worst.max(out.throw_angle_deg().abs());
         assert!(
             out.throw_angle_deg().abs() < 2e-3,
             "{cut}: {}",
             out.throw_angle_deg()
         );
     }
+    cuesight_figures::record!("calibration-compliance-eta-2-throw", "{worst:.0e}");
 }
 
 /// With e* < 1 the restitution spring is stiffer (`k_n/e*²`): the impact lasts
@@ -93,6 +113,7 @@ fn stuck_contact_follows_the_tangential_restitution_closed_form() {
     let cut: f64 = 15.0;
     let phi = cut.to_radians();
     let speed = 2.0;
+    let (mut solver, mut closed_forms) = (Vec::new(), Vec::new());
     for (e, eta) in [(0.5, 4.0 / 3.0), (0.5, 8.0 / 3.0), (1.0, 3.0)] {
         let params = ReferenceParams::constant(5.0, e, 0.3, R, M);
         let out = stun(&params, speed, cut, &compliant(kappa_for(eta)));
@@ -111,7 +132,15 @@ fn stuck_contact_follows_the_tangential_restitution_closed_form() {
             (vx - 0.5 * (1.0 + e) * speed * phi.cos()).abs() < 1e-9 * speed,
             "{vx}"
         );
+        solver.push(format!("{vy:.6}"));
+        closed_forms.push(format!("{expected:.6}"));
     }
+    cuesight_figures::record!("calibration-compliance-stuck-vy", "{}", solver.join(" / "));
+    cuesight_figures::record!(
+        "calibration-compliance-stuck-closed-form",
+        "{}",
+        closed_forms.join(" / ")
+    );
 }
 
 fn scenes() -> Vec<(DVec3, DVec3)> {
@@ -154,6 +183,9 @@ fn stiff_tangential_spring_is_the_rigid_contact() {
         "largest velocity difference / U: kappa 1e2 {:.2e}, 1e4 {:.2e}",
         worst[0], worst[1]
     );
+    cuesight_figures::record!("calibration-compliance-scenes", "{}", scenes().len());
+    cuesight_figures::record!("calibration-compliance-kappa-1e4", "{:.1e}", worst[1]);
+    cuesight_figures::record!("calibration-compliance-kappa-1e2", "{:.1e}", worst[0]);
     assert!(worst[1] < 2e-3, "{worst:?}");
     assert!(worst[1] < 0.3 * worst[0], "{worst:?}");
 }

@@ -94,6 +94,22 @@ fn coverage_of(
         kind.parameter_names(),
         worst
     );
+    // docs/calibration.md §4's table: a count of 100 trials, else a percentage.
+    let key = format!(
+        "calibration-recovery-{}-{}-{trials}",
+        kind.name(),
+        intervals.name()
+    );
+    for (name, n) in kind.parameter_names().iter().zip(&inside) {
+        let name = name.replace('_', "-");
+        if trials == 100 {
+            cuesight_figures::record!(&format!("{key}-{name}"), "{n}");
+        } else {
+            let percent = 100.0 * *n as f64 / trials as f64;
+            cuesight_figures::record!(&format!("{key}-{name}"), "{percent:.1} %");
+        }
+    }
+    cuesight_figures::record!(&format!("{key}-failed"), "{failed}");
     inside
 }
 

@@ -29,6 +29,41 @@ fn figure(x: f64, decimals: usize) -> String {
     }
 }
 
+/// `x` with `decimals` decimals and the typographic minus sign (U+2212) the docs print.
+fn signed(x: f64, decimals: usize) -> String {
+    format!("{x:.decimals$}").replace('-', "\u{2212}")
+}
+
+/// `x` with `decimals` decimals, an explicit sign and the typographic minus.
+fn plus_minus(x: f64, decimals: usize) -> String {
+    format!("{x:+.decimals$}").replace('-', "\u{2212}")
+}
+
+/// `n` with a comma every three digits (`10,332`), as the docs print counts.
+fn thousands(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// `x` to `digits` significant digits (`0.214`, `2.51`), as docs/calibration.md prints
+/// the folds' `mu_c`.
+fn significant(x: f64, digits: i32) -> String {
+    let decimals = (digits - 1 - x.abs().log10().floor() as i32).max(0) as usize;
+    format!("{x:.decimals$}")
+}
+
+/// The series and cut of a point (`slow-20`), as the docs name it.
+fn point_name(m: &cuesight_cli::calibrate::Measurement) -> String {
+    format!("{}-{:.0}", m.series, m.cut_deg)
+}
+
 /// Records a fit's row of the table of docs/calibration.md §3 (`calibration-KIND-…`):
 /// each fitted parameter as `value [lower, upper]` (its 95 % interval), the RMS and the
 /// worst point (`max`, with its series and cut).
@@ -45,6 +80,11 @@ fn record_row(kind: &str, f: &cuesight_cli::calibrate::Fit) {
             figure(e.value, decimals),
             figure(e.lower, decimals),
             figure(e.upper, decimals)
+        );
+        cuesight_figures::record!(
+            &format!("calibration-{kind}-{}-value", e.name.replace('_', "-")),
+            "{}",
+            figure(e.value, decimals)
         );
     }
     let worst = &f.points[f.max_deg.1].measurement;
@@ -108,6 +148,25 @@ fn shared_set_mu_v_by_kim_grip_is_the_reference_fit() {
         kim_grip.rms_deg,
         kim_grip.max_deg.0
     );
+    // docs/calibration.md §2: how far the fast tier's optimum is from the reference's.
+    for (a, b) in kim_grip.estimates.iter().zip(&reference.estimates) {
+        cuesight_figures::record!(
+            &format!(
+                "calibration-kim-grip-vs-reference-{}",
+                a.name.replace('_', "-")
+            ),
+            "{:.1e}",
+            (a.value - b.value).abs()
+        );
+    }
+    cuesight_figures::record!(
+        "calibration-kim-grip-vs-reference-rms",
+        "{:.0e}",
+        (kim_grip.rms_deg - reference.rms_deg).abs()
+    );
+    cuesight_figures::record!("calibration-mu-v-rms-reference", "{:.6}", reference.rms_deg);
+    cuesight_figures::record!("calibration-mu-v-rms-kim-grip", "{:.6}", kim_grip.rms_deg);
+    cuesight_figures::record!("calibration-above-ceiling", "{}", reference.above_ceiling());
     // Issue 19: today's μ(v) fit, 0.45° RMS (max 1.48°), with the Exact model.
     assert!(
         (reference.rms_deg - 0.45).abs() < 5e-3,
@@ -144,6 +203,8 @@ fn shared_set_mu_v_e_reaches_0_45_deg() {
         f.max_deg.0
     );
     record_row("mu-v-e", &f);
+    // The points above the rigid ceiling at the fitted e* (docs/calibration.md §6).
+    cuesight_figures::record!("calibration-mu-v-e-above-ceiling", "{}", f.above_ceiling());
     assert!(f.rms_deg <= 0.45, "{}", f.rms_deg);
 }
 
@@ -160,11 +221,36 @@ fn cross_validation_holds_out_each_speed_series() {
             "held out {}: fit rms {:.3}, predicted rms {:.3}, max {:.3}",
             f.series, f.fit.rms_deg, f.rms_deg, f.max_deg
         );
+        // docs/calibration.md §5's table: `mu` at its bound prints as 1e-6.
+        let p = f.fit.physics;
+        let mu = if p.mu < 1e-4 {
+            format!("{:.0e}", p.mu)
+        } else {
+            format!("{:.4}", p.mu)
+        };
+        let key = |what: &str| format!("calibration-cv-mu-v-{}-{what}", f.series);
+        cuesight_figures::record!(&key("mu"), "{mu}");
+        cuesight_figures::record!(&key("mu-b"), "{:.4}", p.mu_b);
+        cuesight_figures::record!(&key("mu-c"), "{}", significant(p.mu_c, 3));
+        cuesight_figures::record!(&key("fit-rms"), "{:.3}°", f.fit.rms_deg);
+        cuesight_figures::record!(&key("rms"), "{:.3}°", f.rms_deg);
+        cuesight_figures::record!(&key("max"), "{:.2}°", f.max_deg);
         assert_eq!(f.held_out.len(), 12);
         assert_eq!(f.fit.points.len(), 24);
         // Predicting unseen data cannot beat fitting it.
         assert!(f.rms_deg >= f.fit.rms_deg * 0.5);
     }
+    let (rms, max, n) = cuesight_cli::calibrate::report::pooled(&folds);
+    cuesight_figures::record!("calibration-cv-mu-v-pooled-n", "{n}");
+    cuesight_figures::record!("calibration-cv-mu-v-pooled-rms", "{rms:.3}°");
+    cuesight_figures::record!("calibration-cv-mu-v-pooled-max", "{max:.2}°");
+    let mu_c = folds.iter().map(|f| f.fit.physics.mu_c);
+    cuesight_figures::record!(
+        "calibration-cv-mu-v-mu-c-range",
+        "{} to {}",
+        significant(mu_c.clone().fold(f64::INFINITY, f64::min), 2),
+        significant(mu_c.fold(0.0, f64::max), 2)
+    );
 }
 
 /// The profile interval of the constant μ, checked by its definition (Bates & Watts
@@ -203,11 +289,150 @@ fn constant_mu_profile_interval_ends_where_chi2_rises_by_t_squared() {
 fn mu_v_profile_interval_of_mu_ends_at_its_bound() {
     let f = shared_fit(FitKind::MuV, Solver::KimGrip);
     record_row("mu-v", &f);
+    record_mu_v_details(&f);
     let mu = f.estimates[0];
     assert_eq!(mu.lower, 1e-6, "{mu:?}");
     assert!(mu.value - mu.ci95 < 0.0, "{mu:?}");
     for e in &f.estimates {
         assert!(e.lower < e.value && e.value < e.upper, "{e:?}");
+    }
+}
+
+/// The figures of docs/calibration.md §3 and §6 about the μ(v) fit (profile
+/// intervals): standard errors, linearised intervals, correlations, μ at three slip
+/// speeds, the fit's cost, the residuals by series and of the points above the rigid
+/// ceiling, and the worst points.
+fn record_mu_v_details(f: &cuesight_cli::calibrate::Fit) {
+    let joined = |value: &dyn Fn(&cuesight_cli::calibrate::fit::Estimate) -> String| {
+        f.estimates
+            .iter()
+            .map(value)
+            .collect::<Vec<_>>()
+            .join(" / ")
+    };
+    let decimals =
+        |e: &cuesight_cli::calibrate::fit::Estimate| if e.name == "mu_c" { 3 } else { 4 };
+    cuesight_figures::record!(
+        "calibration-mu-v-stderr",
+        "{}",
+        joined(&|e| format!("{:.*}", decimals(e), e.stderr))
+    );
+    cuesight_figures::record!(
+        "calibration-mu-v-linearised-half-width",
+        "{}",
+        joined(&|e| format!("±{:.*}", decimals(e), e.ci95))
+    );
+    let mu = f.estimates[0];
+    cuesight_figures::record!(
+        "calibration-mu-v-linearised-mu-lower",
+        "{}",
+        signed(mu.value - mu.ci95, 3)
+    );
+    let n = f.estimates.len();
+    cuesight_figures::record!(
+        "calibration-mu-v-correlation-mu-mu-c",
+        "{}",
+        signed(f.correlation[2], 2)
+    );
+    cuesight_figures::record!(
+        "calibration-mu-v-correlation-mu-mu-b",
+        "{}",
+        signed(f.correlation[1], 2)
+    );
+    assert_eq!(n * n, f.correlation.len());
+    let p = f.physics;
+    for slip in [1, 2, 5] {
+        let mu_at = p.mu + p.mu_b * (-p.mu_c * slip as f64).exp();
+        cuesight_figures::record!(&format!("calibration-mu-v-mu-at-{slip}"), "{mu_at:.3}");
+    }
+    cuesight_figures::record!(
+        "calibration-mu-v-profile-evaluations",
+        "{}",
+        thousands(f.evaluations)
+    );
+    let rms = |points: &[&cuesight_cli::calibrate::fit::PointFit]| {
+        let sum: f64 = points.iter().map(|p| p.residual_deg.powi(2)).sum();
+        (sum / points.len() as f64).sqrt()
+    };
+    for series in ["slow", "medium", "fast"] {
+        let of: Vec<_> = f
+            .points
+            .iter()
+            .filter(|p| p.measurement.series == series)
+            .collect();
+        let mean = of.iter().map(|p| p.residual_deg).sum::<f64>() / of.len() as f64;
+        cuesight_figures::record!(
+            &format!("calibration-mu-v-{series}-rms"),
+            "{:.2}°",
+            rms(&of)
+        );
+        cuesight_figures::record!(
+            &format!("calibration-mu-v-{series}-mean"),
+            "{}°",
+            plus_minus(mean, 2)
+        );
+    }
+    // The points above the rigid ceiling (§6): each one's ceiling and excess, and the
+    // residuals of those points, of the others, and of the whole set without them.
+    let (above, below): (Vec<_>, Vec<_>) = f
+        .points
+        .iter()
+        .partition(|p| p.measurement.throw_deg > p.ceiling_deg);
+    for p in &above {
+        let name = point_name(&p.measurement);
+        cuesight_figures::record!(
+            &format!("calibration-ceiling-{name}"),
+            "{:.3}°",
+            p.ceiling_deg
+        );
+        cuesight_figures::record!(
+            &format!("calibration-above-{name}"),
+            "{:.3}°",
+            p.measurement.throw_deg - p.ceiling_deg
+        );
+    }
+    for cut in [20.0, 30.0] {
+        let ceiling = f
+            .points
+            .iter()
+            .find(|p| p.measurement.cut_deg == cut)
+            .unwrap()
+            .ceiling_deg;
+        cuesight_figures::record!(&format!("calibration-ceiling-{cut:.0}"), "{ceiling:.2}°");
+    }
+    cuesight_figures::record!("calibration-mu-v-above-rms", "{:.3}°", rms(&above));
+    cuesight_figures::record!("calibration-mu-v-below-rms", "{:.3}°", rms(&below));
+    let without = (below.len() as f64 / f.points.len() as f64).sqrt() * rms(&below);
+    cuesight_figures::record!("calibration-mu-v-above-at-zero-rms", "{without:.3}°");
+    // §6: the 5° points (the contact grips: the ceiling, whatever the speed) and the
+    // medium series' curvature in cut.
+    let at_5: Vec<_> = f
+        .points
+        .iter()
+        .filter(|p| p.measurement.cut_deg == 5.0)
+        .collect();
+    cuesight_figures::record!("calibration-mu-v-model-5", "{:.2}°", at_5[0].model_deg);
+    let residual = |p: &&cuesight_cli::calibrate::fit::PointFit| p.residual_deg;
+    cuesight_figures::record!(
+        "calibration-mu-v-residual-5",
+        "{}° to {}°",
+        plus_minus(at_5.iter().map(residual).fold(f64::INFINITY, f64::min), 2),
+        plus_minus(
+            at_5.iter().map(residual).fold(f64::NEG_INFINITY, f64::max),
+            2
+        )
+    );
+    for p in &f.points {
+        let name = point_name(&p.measurement);
+        if p.measurement.series == "medium"
+            && [30.0, 35.0, 55.0, 60.0].contains(&p.measurement.cut_deg)
+        {
+            cuesight_figures::record!(
+                &format!("calibration-mu-v-residual-{name}"),
+                "{}°",
+                plus_minus(p.residual_deg, 2)
+            );
+        }
     }
 }
 
@@ -229,6 +454,7 @@ fn mu_v_fit_is_the_global_optimum_on_the_shared_set() {
     };
     let f = shared_fit_with(FitKind::MuV, Solver::KimGrip, Intervals::Linearised);
     let mut grid_min = (f64::INFINITY, [0.0; 3]);
+    let mut grid_points = 0;
     for ic in 0..=16 {
         let mu_c = 0.01 * 10f64.powf(ic as f64 / 4.0);
         for ia in 0..=25 {
@@ -242,6 +468,7 @@ fn mu_v_fit_is_the_global_optimum_on_the_shared_set() {
                     ..f.physics
                 };
                 let r = rms(&physics);
+                grid_points += 1;
                 if r < grid_min.0 {
                     grid_min = (r, [mu, mu_b, mu_c]);
                 }
@@ -255,6 +482,15 @@ fn mu_v_fit_is_the_global_optimum_on_the_shared_set() {
         grid_min.0,
         grid_min.1
     );
+    cuesight_figures::record!("calibration-grid-points", "{}", thousands(grid_points));
+    cuesight_figures::record!("calibration-grid-rms", "{:.4}°", grid_min.0);
+    cuesight_figures::record!("calibration-mu-v-rms-4", "{:.4}°", f.rms_deg);
+    cuesight_figures::record!("calibration-mu-v-over-0-45", "{:.4}°", f.rms_deg - 0.45);
+    cuesight_figures::record!(
+        "calibration-mu-v-fit-evaluations",
+        "{}",
+        thousands(f.evaluations)
+    );
     assert!(grid_min.0 >= f.rms_deg - 1e-9, "{grid_min:?}");
     // The optimum is interior: no bound is active.
     assert!(f.physics.mu > 0.01 && f.physics.mu_c > 0.1 && f.physics.mu_c < 10.0);
@@ -266,6 +502,11 @@ fn mu_v_fit_is_the_global_optimum_on_the_shared_set() {
         lower_e.physics.restitution = e;
         let g = fit(&points, &lower_e).unwrap();
         println!("e* {e} fixed: mu-v rms {:.5}", g.rms_deg);
+        cuesight_figures::record!(
+            &format!("calibration-mu-v-rms-e-{:.0}", e * 100.0),
+            "{:.4}",
+            g.rms_deg
+        );
         assert_eq!(g.rms_deg <= 0.45, expect_below, "e* {e}: {}", g.rms_deg);
     }
 }
@@ -295,6 +536,40 @@ fn mu_v_k_reaches_points_above_the_rigid_ceiling() {
         f.max_deg.0,
         above.len()
     );
+    // docs/calibration.md §7's table (± the linearised 95 % half-width).
+    for e in &f.estimates {
+        let decimals = if e.name == "mu" || e.name == "mu_b" {
+            4
+        } else {
+            3
+        };
+        let key = match e.name {
+            "tangential_stiffness" => "kappa".to_owned(),
+            name => name.replace('_', "-"),
+        };
+        cuesight_figures::record!(
+            &format!("calibration-mu-v-k-{key}"),
+            "{:.decimals$} ± {:.3}",
+            e.value,
+            e.ci95
+        );
+    }
+    let kappa = f.physics.tangential_stiffness.unwrap();
+    cuesight_figures::record!("calibration-mu-v-k-kappa-value", "{kappa:.3}");
+    cuesight_figures::record!("calibration-mu-v-k-eta", "{:.2}", (3.5 * kappa).sqrt());
+    cuesight_figures::record!("calibration-mu-v-k-rms", "{:.3}°", f.rms_deg);
+    let worst = &f.points[f.max_deg.1].measurement;
+    cuesight_figures::record!(
+        "calibration-mu-v-k-max",
+        "{:.2}° ({} {:.0}°)",
+        f.max_deg.0,
+        worst.series,
+        worst.cut_deg
+    );
+    cuesight_figures::record!("calibration-mu-v-k-reached", "{reached}");
+    let above_rms =
+        (above.iter().map(|p| p.residual_deg.powi(2)).sum::<f64>() / above.len() as f64).sqrt();
+    cuesight_figures::record!("calibration-mu-v-k-above-rms", "{above_rms:.2}°");
     assert_eq!(above.len(), 12);
     assert!(reached >= 10, "{reached}");
     // Better than μ(v) with the rigid contact (0.4511°).
