@@ -156,4 +156,21 @@ fn firmware_answers_shot_requests_as_the_host_session() {
     cuesight_figures::record!("protocol-e2e-shot-guided", "{guided}");
     cuesight_figures::record!("protocol-e2e-shot-refused", "{refused}");
     cuesight_figures::record!("protocol-e2e-shot-peak-stack", "{}", thousands(peak));
+    // README's firmware figures: the statics the same line names ("(statics: stroke
+    // upload N, frame reader N, answer N)").
+    let statics = line.split("statics: ").nth(1).unwrap_or_default();
+    for (name, key) in [
+        ("stroke upload ", "readme-static-stroke-upload"),
+        ("frame reader ", "readme-static-frame-reader"),
+        ("answer ", "readme-static-answer"),
+    ] {
+        let bytes = statics
+            .split(name)
+            .nth(1)
+            .and_then(|rest| rest.split(|c: char| !c.is_ascii_digit()).next())
+            .and_then(|n| n.parse::<u32>().ok());
+        if let Some(bytes) = bytes {
+            cuesight_figures::record!(key, "{}", thousands(bytes));
+        }
+    }
 }
