@@ -95,6 +95,28 @@ fn cli_json_has_collides_names_and_feeds_params() {
     let with_flags = cuesight(&[&shot[..], &["--mu", &mu, "--mu-b", &b, "--mu-c", &c]].concat());
     assert!(with_file.status.success());
     assert_eq!(with_file.stdout, with_flags.stdout);
+    // docs/calibration.md §3: the fitted μ(v) in `collide`, and the device's `params`
+    // line with the fit (four significant digits).
+    let played: Value = serde_json::from_slice(&with_file.stdout).unwrap();
+    cuesight_figures::record!(
+        "calibration-params-collide-throw",
+        "{:.3} deg ({})",
+        played["throw_deg"].as_f64().unwrap(),
+        played["regime"].as_str().unwrap()
+    );
+    let significant = |x: &Value| {
+        let x = x.as_f64().unwrap();
+        let decimals = (3 - x.abs().log10().floor() as i32).max(0) as usize;
+        format!("{x:.decimals$}")
+    };
+    cuesight_figures::record!(
+        "calibration-params-line",
+        "`{{\"params\":{{\"mu\":{},\"mu_b\":{},\"mu_c\":{},\"restitution\":{}}}}}`",
+        significant(&v["mu"]),
+        significant(&v["mu_b"]),
+        significant(&v["mu_c"]),
+        v["restitution"]
+    );
     // A flag overrides the file.
     let overridden =
         cuesight(&[&shot[..], &["--params", path, "--mu-b", "0", "--mu-c", "0"]].concat());
