@@ -4,6 +4,8 @@ use cuesight_cli::calibrate::{
     cross_validate, fit, read_file, FitKind, FitOptions, Intervals, Solver,
 };
 
+use cuesight_figures::{signed, thousands};
+
 use super::shared_set;
 
 /// CPU time of the calling thread (s), from `/proc/thread-self/stat` (utime + stime,
@@ -29,27 +31,9 @@ fn figure(x: f64, decimals: usize) -> String {
     }
 }
 
-/// `x` with `decimals` decimals and the typographic minus sign (U+2212) the docs print.
-fn signed(x: f64, decimals: usize) -> String {
-    format!("{x:.decimals$}").replace('-', "\u{2212}")
-}
-
 /// `x` with `decimals` decimals, an explicit sign and the typographic minus.
 fn plus_minus(x: f64, decimals: usize) -> String {
     format!("{x:+.decimals$}").replace('-', "\u{2212}")
-}
-
-/// `n` with a comma every three digits (`10,332`), as the docs print counts.
-fn thousands(n: usize) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }
 
 /// `x` to `digits` significant digits (`0.214`, `2.51`), as docs/calibration.md prints
