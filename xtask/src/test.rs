@@ -122,12 +122,12 @@ const STEPS: &[Step] = &[
         action: live_cue,
     },
     Step {
-        title: "docs: every generated block of README.md and docs/ is current, the figures the tests above recorded included (cargo xtask docs --check)",
-        action: || crate::docs::run(&crate::docs::Args::check()),
-    },
-    Step {
         title: "bench-firmware: fmt, clippy, KimGrip f32 disassembly (vsqrt.f32, no soft f64), instruction count within 5 % of the baseline",
         action: crate::bench::check,
+    },
+    Step {
+        title: "docs: every generated block of README.md and docs/ is current, the figures the tests above recorded included (cargo xtask docs --check)",
+        action: || crate::docs::run(&crate::docs::Args::check()),
     },
     Step {
         title: "fuzz: every cargo-fuzz target for 60 s on its seed corpus (stable toolchain, RUSTC_BOOTSTRAP=1), no crash",

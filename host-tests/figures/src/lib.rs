@@ -88,12 +88,6 @@ pub fn valid_key(key: &str) -> bool {
 /// `runnable` is a binary or an example (`cargo run`): the command is then its own
 /// command line, arguments included; otherwise a test's, from its thread's name.
 pub fn record_from(package: &str, target: &str, runnable: bool, key: &str, value: &dyn Display) {
-    assert!(valid_key(key), "figure key {key:?}: use a-z, 0-9 and -");
-    let value = value.to_string();
-    assert!(
-        !value.contains('\n') && !value.is_empty(),
-        "figure {key}: {value:?} must be one non-empty line"
-    );
     let thread = std::thread::current();
     let test = thread.name().unwrap_or("main");
     // An `#[ignore]`d test (run by `cargo xtask test` with `--ignored`) says so.
@@ -119,16 +113,30 @@ pub fn record_from(package: &str, target: &str, runnable: bool, key: &str, value
     } else {
         format!("cargo test -p {package} --test {target} -- {test} --exact{ignored}")
     };
+    if let Err(e) = record_with(key, value, &command) {
+        panic!("figure {key}: writing {}: {e}", dir().display());
+    }
+}
+
+/// Records a figure measured by a command that is not a test (`cargo xtask`'s steps),
+/// named by `command`. Panics on an invalid key or a value that is not one line (a
+/// programming error), returns the error of a file it cannot write.
+pub fn record_with(key: &str, value: &dyn Display, command: &str) -> std::io::Result<()> {
+    assert!(valid_key(key), "figure key {key:?}: use a-z, 0-9 and -");
+    let value = value.to_string();
+    assert!(
+        !value.contains('\n') && !value.is_empty(),
+        "figure {key}: {value:?} must be one non-empty line"
+    );
     let dir = dir();
-    let write = std::fs::create_dir_all(&dir).and_then(|()| {
+    std::fs::create_dir_all(&dir).and_then(|()| {
         // Written whole then renamed: two test threads never leave a torn file.
-        let temporary = dir.join(format!(".{key}.{}", std::process::id()));
+        static WRITES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+        let write = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let temporary = dir.join(format!(".{key}.{}.{write}", std::process::id()));
         std::fs::write(&temporary, format!("{value}\n{command}\n"))?;
         std::fs::rename(&temporary, dir.join(key))
-    });
-    if let Err(e) = write {
-        panic!("figure {key}: writing {}: {e}", dir.display());
-    }
+    })
 }
 
 #[cfg(test)]
