@@ -136,7 +136,22 @@ pub fn run(dir: &Path, timeout: Duration) -> Result<StreamBench> {
         .map_err(|e| Failure::new(format!("writing {}: {e}", json_path.display())))?;
     println!("{}", bench.console());
     println!("xtask bench: wrote {}", json_path.display());
+    bench.record()?;
     Ok(bench)
+}
+
+/// `cause` as a figure key's part: `block end, measuring follow-through` →
+/// `block-end-measuring-follow-through`.
+fn slug(cause: &str) -> String {
+    let mut out = String::new();
+    for c in cause.chars() {
+        if c.is_ascii_alphanumeric() {
+            out.push(c.to_ascii_lowercase());
+        } else if !out.ends_with('-') {
+            out.push('-');
+        }
+    }
+    out.trim_matches('-').to_string()
 }
 
 /// Runs the sensors test that writes the bench stream into `path`.
@@ -615,6 +630,31 @@ impl StreamBench {
     }
 
     /// The console summary.
+    /// Records the per-sample table of docs/sensors.md §11 (`bench-stream-CAUSE-count`,
+    /// `-mean`, `-max`; `CAUSE` `all` for every sample): its `docs:figure … by-hand`
+    /// blocks, checked by `cargo xtask docs --check` after this command (CI does not run
+    /// it).
+    fn record(&self) -> Result {
+        const COMMAND: &str = "cargo xtask bench --stream-only";
+        let (mean, max, _, _) = self.summary();
+        let mut rows = vec![("all".to_string(), self.counts.len(), mean, max)];
+        for (cause, samples, mean, max, _) in by_cause(&self.counts, &self.causes) {
+            rows.push((slug(&cause), samples, mean, max));
+        }
+        for (cause, samples, mean, max) in rows {
+            for (what, value) in [
+                ("count", cuesight_figures::thousands(samples)),
+                ("mean", format!("{mean:.1}")),
+                ("max", max.to_string()),
+            ] {
+                let key = format!("bench-stream-{cause}-{what}");
+                cuesight_figures::record_with(&key, &value, COMMAND)
+                    .map_err(|e| Failure::new(format!("recording figure {key}: {e}")))?;
+            }
+        }
+        Ok(())
+    }
+
     pub fn console(&self) -> String {
         let (mean, max, at, cause) = self.summary();
         let mut text = format!(
