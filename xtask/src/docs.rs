@@ -88,7 +88,7 @@ pub fn run(args: &Args) -> Result {
             let now = match render(&block.spec, is_inline(&text, block)) {
                 Ok(now) => now,
                 Err(e) if e.message.starts_with(UNRECORDED) => {
-                    unchecked.push(format!("{shown}:{line}: `{}`", block.spec));
+                    unchecked.push(shown.clone());
                     was.to_string()
                 }
                 Err(e) => return Err(Failure::new(format!("{shown}:{line}: {}", e.message))),
@@ -119,11 +119,20 @@ pub fn run(args: &Args) -> Result {
         )));
     }
     if !unchecked.is_empty() {
+        let mut per_file: Vec<(String, usize)> = Vec::new();
+        for file in &unchecked {
+            match per_file.last_mut() {
+                Some((last, n)) if last == file => *n += 1,
+                _ => per_file.push((file.clone(), 1)),
+            }
+        }
+        let listed: Vec<String> = per_file.iter().map(|(f, n)| format!("{f} {n}")).collect();
         println!(
-            "xtask docs: {} by-hand figure(s) not recorded here, left as they are \
-             (their tests are #[ignore]d; run them to check these):\n  {}",
+            "xtask docs: {} by-hand figure(s) not recorded here, left as they are ({}): \
+             the ignored tests, examples or `cargo xtask bench` runs that record them did \
+             not run since the last `cargo xtask test`",
             unchecked.len(),
-            unchecked.join("\n  ")
+            listed.join(", ")
         );
     }
     println!(
