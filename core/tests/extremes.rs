@@ -373,11 +373,11 @@ fn switches() -> [(&'static str, f32, f32, Rebuild); 5] {
 /// Continuity across the slide/grip boundary of `KimGrip`, `SeedExact` and `Exact`,
 /// bisected in μ, e*, μ_s, μ_ct and U to adjacent f32 values on 400 scenes of the whole
 /// domain (every ball set, constant and speed-dependent friction): the outputs on either
-/// side differ by less than 2e-5 U for `KimGrip` (measured: 2.0e-7 U; the foundation
-/// figure is 2.2e-7 U on pool scenes) and `SeedExact` (its stick branch is the limit of
-/// its sliding solution; the root solves stop within 2 ε of `q`), and 2e-3 U for `Exact`
-/// (measured: 1.4e-3 U — its fixed-step stick detection jumps; see
-/// `bug_exact_jumps_at_stick_onset`).
+/// side differ by less than 2e-5 U for `KimGrip` and `SeedExact` (its stick branch is the
+/// limit of its sliding solution; the root solves stop within 2 ε of `q`), and 2e-3 U for
+/// `Exact` (1.4e-3 U before the fix of docs/reliability.md's bug 2; see
+/// `exact_is_continuous_at_stick_onset`). The measured jumps are the figures
+/// `reliability-extremes-grip-kimgrip-jump` and `-exact-jump` (docs/reliability.md).
 #[test]
 fn grip_boundary_is_continuous_in_every_parameter() {
     const MODELS: [(Model, f32); 3] = [
@@ -610,9 +610,10 @@ fn auto_is_continuous_outside_the_calibration_domain() {
 }
 
 /// `Exact` at its slide → grip switch, in the same bisection as
-/// `grip_boundary_is_continuous_in_every_parameter`: held to its own accuracy target
-/// (0.02 % = 2e-4 U) it fails; the largest jump found is 1.4e-3 U, and 1.1e-2 U with a
-/// speed-dependent law at a tiny slip (U 4.4265 m/s, stun, μ(v) = 0.031 + 0.174 e^{−6.3 v}).
+/// `grip_boundary_is_continuous_in_every_parameter`, held to its own accuracy target
+/// (0.02 % = 2e-4 U). Before the fix of docs/reliability.md's bug 2 it failed: the largest jump
+/// was 1.4e-3 U, and 1.1e-2 U with a speed-dependent law at a tiny slip (U 4.4265 m/s,
+/// stun, μ(v) = 0.031 + 0.174 e^{−6.3 v}).
 #[test]
 fn exact_is_continuous_at_stick_onset() {
     let mut worst = (0.0f32, String::new());
