@@ -15,8 +15,12 @@
 //!    firmware itself printed (`host-tests/benches/tradeoff.rs`).
 //!
 //! Results: `target/bench/tradeoff.json`, and the report `tradeoff.md` with its plot
-//! `tradeoff.svg` beside it in `target/bench/`; with `--update-docs` the report and the
-//! plot replace the tracked `docs/tradeoff.md` and `docs/tradeoff.svg` instead.
+//! `tradeoff.svg` beside it in `target/bench/`; with `--update-docs` the measurements,
+//! the report and the plot replace the tracked `docs/tradeoff.{json,md,svg}` instead.
+//! The report and plot are functions of the JSON alone ([`render_report`]): `cargo xtask
+//! docs` regenerates them from `docs/tradeoff.json`, adopts a newer bench run's JSON,
+//! and `--check` holds all three to each other and to the KimGrip gate's counts
+//! (`crate::docs`'s tradeoff module).
 //!
 //! Besides, the streaming stroke estimator (issue 15): instructions per sample on a
 //! stroke stream and its code size, in the shipped firmware's build configuration
@@ -147,27 +151,48 @@ pub fn run(args: &Args) -> Result {
         timings: timings.as_ref(),
     };
     let json = report::json(&bench)?;
-    let json_path = dir.join("tradeoff.json");
-    write(
-        &json_path,
-        &serde_json::to_string_pretty(&json).expect("JSON values serialise"),
-    )?;
+    write(&measured_json(), &json_text(&json))?;
     let reports = report_dir(args.update_docs);
+    if args.update_docs {
+        write(&reports.join("tradeoff.json"), &json_text(&json))?;
+    }
     let (md_path, svg_path) = (reports.join("tradeoff.md"), reports.join("tradeoff.svg"));
-    write(&md_path, &report::markdown(&json))?;
-    write(&svg_path, &plot::svg(&json)?)?;
+    let (md, svg) = render_report(&json)?;
+    write(&md_path, &md)?;
+    write(&svg_path, &svg)?;
     println!("{}", report::console(&json));
     println!(
         "xtask bench: wrote {}, {}, {} in {:.0} s",
-        json_path.display(),
+        measured_json().display(),
         md_path.display(),
         svg_path.display(),
         started.elapsed().as_secs_f64()
     );
     if !args.update_docs {
-        println!("xtask bench: docs/ left as it is (--update-docs writes the report there)");
+        println!(
+            "xtask bench: docs/ left as it is (`cargo xtask docs` adopts this run into \
+             docs/tradeoff.{{json,md,svg}}; --update-docs writes them at once)"
+        );
     }
     Ok(())
+}
+
+/// Where a bench run writes its measurements: `target/bench/tradeoff.json`.
+pub fn measured_json() -> PathBuf {
+    out_dir().join("tradeoff.json")
+}
+
+/// The measurements as they are written: pretty JSON, a final newline.
+pub fn json_text(json: &serde_json::Value) -> String {
+    let mut text = serde_json::to_string_pretty(json).expect("JSON values serialise");
+    text.push('\n');
+    text
+}
+
+/// `tradeoff.md` and `tradeoff.svg`, both rendered from the measurements alone (so
+/// `cargo xtask docs` regenerates them from the tracked `docs/tradeoff.json`).
+pub fn render_report(json: &serde_json::Value) -> Result<(String, String)> {
+    Ok((report::markdown(json), plot::svg(json)?))
 }
 
 /// The `cargo xtask test` step: fmt and clippy of `bench-firmware/`, then the
