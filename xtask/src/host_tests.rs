@@ -16,6 +16,7 @@ use std::sync::Mutex;
 use std::time::Instant;
 
 use crate::cmd::{self, Failure, Result};
+use crate::tools;
 
 /// Test binaries (target names) that took longest in CI, started first so the short
 /// ones fill the end. A name not here only starts later.
@@ -48,10 +49,10 @@ struct TestBinary {
     package_dir: PathBuf,
 }
 
-/// The unit, binary and integration tests of the workspace, then its doctests. Named
-/// targets leave the examples out: plain `cargo test` compiles each one (never runs
-/// it), in the dev profile where `cuesight-host` is optimised, and "host: clippy"
-/// (`--all-targets`) has already checked them.
+/// The unit, binary and integration tests of the workspace, then its doctests; the
+/// build compiles the examples and benches too (in the test profile, never run) and
+/// lints every target with clippy as it compiles them ([`tools::host_cargo`]): this step
+/// is the host workspace's `cargo clippy --all-targets -- -D warnings` as well.
 pub fn run() -> Result {
     let mut binaries = build()?;
     // The figures the docs quote are recorded afresh by this run: one an older run left
@@ -93,7 +94,7 @@ pub fn run() -> Result {
             failed.join("; ")
         )));
     }
-    cmd::run(cmd::cargo().args(["test", "--workspace", "--doc"]))
+    cmd::run(tools::host_cargo()?.args(["test", "--workspace", "--doc"]))
 }
 
 fn lock<T>(mutex: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
@@ -102,12 +103,19 @@ fn lock<T>(mutex: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
         .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
-/// `cargo test --workspace --tests --no-run`, its test executables read from its JSON
-/// messages (diagnostics still rendered on stderr).
+/// `cargo test --workspace --tests --examples --benches --no-run`, linted, its test
+/// executables read from its JSON messages (diagnostics still rendered on stderr).
 fn build() -> Result<Vec<TestBinary>> {
-    let mut command = cmd::cargo();
+    let mut command = tools::host_cargo()?;
     command
-        .args(["test", "--workspace", "--tests", "--no-run"])
+        .args([
+            "test",
+            "--workspace",
+            "--tests",
+            "--examples",
+            "--benches",
+            "--no-run",
+        ])
         .args(["--message-format", "json-render-diagnostics"])
         .current_dir(cmd::root())
         .stderr(Stdio::inherit());
@@ -128,9 +136,17 @@ fn build() -> Result<Vec<TestBinary>> {
     Ok(binaries)
 }
 
-/// A `compiler-artifact` message of a test build with an executable.
+/// A `compiler-artifact` message of a test build with an executable, other than an
+/// example's or a bench's (built to be linted, not run: the benches are `cargo xtask
+/// bench`'s, the examples take their own arguments).
 fn test_binary(message: &serde_json::Value) -> Option<TestBinary> {
     if message["reason"] != "compiler-artifact" || message["profile"]["test"] != true {
+        return None;
+    }
+    if !matches!(
+        message["target"]["kind"][0].as_str(),
+        Some("lib" | "bin" | "test")
+    ) {
         return None;
     }
     let executable = PathBuf::from(message["executable"].as_str()?);

@@ -89,7 +89,7 @@ fn venv_python() -> Result<PathBuf> {
 /// no-op, where `-p` resolved other features (no `schema` on core, link and sensors)
 /// and rebuilt core, link, sensors and the CLI (57 s of a bare-machine CI run).
 fn cli() -> Result<PathBuf> {
-    cmd::run(cmd::cargo().args(["build", "--workspace", "--bin", "cuesight"]))?;
+    cmd::run(crate::tools::host_cargo()?.args(["build", "--workspace", "--bin", "cuesight"]))?;
     Ok(host_target_dir().join("debug").join("cuesight"))
 }
 

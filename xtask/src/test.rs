@@ -26,20 +26,7 @@ const STEPS: &[Step] = &[
         action: || cargo_at_root(&["fmt", "--all", "--", "--check"]),
     },
     Step {
-        title: "host: clippy",
-        action: || {
-            cargo_at_root(&[
-                "clippy",
-                "--workspace",
-                "--all-targets",
-                "--",
-                "-D",
-                "warnings",
-            ])
-        },
-    },
-    Step {
-        title: "host: tests",
+        title: "host: tests, every target linted by clippy as it builds (tests, examples, benches; warnings denied)",
         action: crate::host_tests::run,
     },
     Step {
@@ -216,10 +203,10 @@ fn check_stack_budget() -> Result {
 /// tests" (which already compiled this binary), where `-p` resolves others (no
 /// `schema` on core, link and sensors) and rebuilt cuesight-host, its dependents and
 /// the test first (150 s of CPU on a fresh clone). Same test, same binary source.
-fn e2e_test(name: &str) -> std::process::Command {
-    let mut test = cmd::cargo();
+fn e2e_test(name: &str) -> Result<std::process::Command> {
+    let mut test = tools::host_cargo()?;
     test.args(["test", "--workspace", "--test", name, "--"]);
-    test
+    Ok(test)
 }
 
 /// `host-tests/tests/e2e.rs`, `#[ignore]`d in plain `cargo test` because it needs the
@@ -228,7 +215,7 @@ fn e2e_test(name: &str) -> std::process::Command {
 fn end_to_end() -> Result {
     tools::ensure_qemu()?;
     let defmt_print = tools::defmt_print()?;
-    let mut test = e2e_test("e2e");
+    let mut test = e2e_test("e2e")?;
     test.args(["--ignored", "--nocapture"])
         .env("CUESIGHT_FIRMWARE_ELF", qemu::elf_path())
         .env("DEFMT_PRINT", defmt_print);
@@ -242,7 +229,7 @@ fn end_to_end() -> Result {
 fn end_to_end_shot() -> Result {
     tools::ensure_qemu()?;
     let defmt_print = tools::defmt_print()?;
-    let mut test = e2e_test("e2e_shot");
+    let mut test = e2e_test("e2e_shot")?;
     test.args(["--ignored", "--nocapture"])
         .env("CUESIGHT_FIRMWARE_ELF", qemu::elf_path())
         .env("DEFMT_PRINT", defmt_print);
@@ -257,7 +244,7 @@ fn live_cue() -> Result {
     size::check_live_budgets(&elf)?;
     tools::ensure_qemu()?;
     let defmt_print = tools::defmt_print()?;
-    let mut test = e2e_test("e2e_live");
+    let mut test = e2e_test("e2e_live")?;
     // The 100-stroke acceptance stream (about 4 minutes) is run by hand:
     // `cargo test -p cuesight-host --test e2e_live -- --ignored --nocapture`.
     test.args([

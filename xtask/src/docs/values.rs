@@ -15,8 +15,10 @@ fn output_of(line: &str) -> Result<String> {
     let program = words
         .next()
         .ok_or(Failure::new("an empty `docs:console` command"))?;
+    // Through the linted host build, as the tests built the CLI: a plain `cargo run`
+    // would compile the workspace's crates again.
     let program = if program == "cargo" {
-        cmd::cargo()
+        crate::tools::host_cargo()?
     } else {
         Command::new(program)
     };
