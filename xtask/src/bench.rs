@@ -24,10 +24,12 @@
 //!
 //! Besides, the streaming stroke estimator (issue 15): instructions per sample on a
 //! stroke stream and its code size, in the shipped firmware's build configuration
-//! ([`stream`]; `target/bench/stream.json`, and `--stream-only` for just that).
+//! ([`stream`]; `target/bench/stream.json`, and `--stream-only` for just that); and the
+//! shot-guidance probe ([`guidance`], `--guidance-only` for just that).
 
 mod disasm;
 mod firmware;
+mod guidance;
 mod host;
 mod plot;
 mod regression;
@@ -66,6 +68,10 @@ pub struct Args {
     /// sample and code size on the Cortex-M4F), written to target/bench/stream.json.
     #[arg(long)]
     stream_only: bool,
+    /// Only the shot-guidance probe (a forward shot and an inverse aim on the
+    /// Cortex-M4F: instructions and peak stack, recorded for docs/shot.md).
+    #[arg(long)]
+    guidance_only: bool,
 }
 
 /// Where the measurements go: `target/bench/` (honours `CARGO_TARGET_DIR`).
@@ -112,6 +118,11 @@ pub fn run(args: &Args) -> Result {
         return Ok(());
     }
 
+    if args.guidance_only {
+        section("shot-guidance probe under QEMU (-icount shift=0)");
+        return guidance::run(timeout);
+    }
+
     section("scene set");
     let scenes = dir.join("scenes.bin");
     host::write_scenes(args.seed, args.scenes, args.counted, &scenes)?;
@@ -123,6 +134,9 @@ pub fn run(args: &Args) -> Result {
 
     section("streaming estimator under QEMU (-icount shift=0, instruction trace)");
     stream::run(&dir, timeout)?;
+
+    section("shot-guidance probe under QEMU (-icount shift=0)");
+    guidance::run(timeout)?;
 
     section("errors against the reference");
     let listings: Vec<PathBuf> = runs
@@ -189,14 +203,27 @@ pub fn json_text(json: &serde_json::Value) -> String {
     text
 }
 
+/// One instruction count of the measurements, as `tradeoff.md` prints it: `stat`
+/// (`mean`, `min`, `max`, `median`) of `model`'s row at `precision` and `backend`,
+/// built with `profile` (`release`: opt-level 3, `release-s`).
+pub fn instructions_of(
+    json: &serde_json::Value,
+    [model, precision, backend, profile, stat]: [&str; 5],
+) -> Option<String> {
+    let row = report::find(json, model, precision, backend)?;
+    let count = row["instructions"][profile][stat].as_f64()?;
+    Some(report::instructions(count))
+}
+
 /// `tradeoff.md` and `tradeoff.svg`, both rendered from the measurements alone (so
 /// `cargo xtask docs` regenerates them from the tracked `docs/tradeoff.json`).
 pub fn render_report(json: &serde_json::Value) -> Result<(String, String)> {
     Ok((report::markdown(json), plot::svg(json)?))
 }
 
-/// The `cargo xtask test` step: fmt and clippy of `bench-firmware/`, then the
-/// disassembly check of the f32 `KimGrip` hot path for each backend.
+/// The `cargo xtask test` step: fmt and clippy of `bench-firmware/`, the disassembly
+/// check of the f32 `KimGrip` hot path for each backend, the KimGrip instruction-count
+/// gate, and the shot-guidance probe (its figures recorded for docs/shot.md).
 pub fn check() -> Result {
     let in_firmware = |args: &[&str]| {
         cmd::run(
@@ -217,7 +244,8 @@ pub fn check() -> Result {
         "warnings",
     ])?;
     disasm::check_kimgrip()?;
-    regression::check_kimgrip_count()
+    regression::check_kimgrip_count()?;
+    guidance::run(Duration::from_secs(120))
 }
 
 fn section(title: &str) {

@@ -201,7 +201,10 @@ fn render(spec: &str, inline: bool) -> Result<String> {
     let (kind, rest) = spec.split_once(' ').unwrap_or((spec, ""));
     let body = match kind {
         "console" => console(rest.trim())?,
-        "value" => value(rest.trim())?,
+        "value" => match rest.trim().strip_prefix("tradeoff ") {
+            Some(query) => tradeoff::value(query)?,
+            None => value(rest.trim())?,
+        },
         "figure" => figure(rest.trim())?,
         _ => {
             return Err(Failure::new(format!(

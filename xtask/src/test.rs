@@ -109,7 +109,7 @@ const STEPS: &[Step] = &[
         action: live_cue,
     },
     Step {
-        title: "bench-firmware: fmt, clippy, KimGrip f32 disassembly (vsqrt.f32, no soft f64), instruction count within 5 % of the baseline",
+        title: "bench-firmware: fmt, clippy, KimGrip f32 disassembly (vsqrt.f32, no soft f64), instruction count within 5 % of the baseline, the shot-guidance probe's counts",
         action: crate::bench::check,
     },
     Step {

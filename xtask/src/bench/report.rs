@@ -216,7 +216,7 @@ pub fn json(bench: &Bench) -> Result<Value> {
 }
 
 /// Instructions: one decimal below 1000, else whole with separators (`475.1`, `8,677`).
-fn instructions(x: f64) -> String {
+pub fn instructions(x: f64) -> String {
     if x < 1000.0 {
         format!("{x:.1}")
     } else {
@@ -354,7 +354,12 @@ fn branch_table(report: &Value) -> String {
     md
 }
 
-fn find<'a>(report: &'a Value, model: &str, precision: &str, backend: &str) -> Option<&'a Value> {
+pub fn find<'a>(
+    report: &'a Value,
+    model: &str,
+    precision: &str,
+    backend: &str,
+) -> Option<&'a Value> {
     report["rows"]
         .as_array()?
         .iter()

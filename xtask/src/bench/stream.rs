@@ -641,16 +641,27 @@ impl StreamBench {
         for (cause, samples, mean, max, _) in by_cause(&self.counts, &self.causes) {
             rows.push((slug(&cause), samples, mean, max));
         }
+        let record = |key: &str, value: &str| {
+            cuesight_figures::record_with(key, &value, COMMAND)
+                .map_err(|e| Failure::new(format!("recording figure {key}: {e}")))
+        };
         for (cause, samples, mean, max) in rows {
             for (what, value) in [
                 ("count", cuesight_figures::thousands(samples)),
                 ("mean", format!("{mean:.1}")),
                 ("max", max.to_string()),
             ] {
-                let key = format!("bench-stream-{cause}-{what}");
-                cuesight_figures::record_with(&key, &value, COMMAND)
-                    .map_err(|e| Failure::new(format!("recording figure {key}: {e}")))?;
+                record(&format!("bench-stream-{cause}-{what}"), &value)?;
             }
+        }
+        // The code sizes of §11 (bytes reachable from the entry points; `own`: without
+        // the memcpy/memset routines every firmware links anyway).
+        for (key, bytes) in [
+            ("bench-stream-code-push-raw", total(&self.code.push)),
+            ("bench-stream-code-api", total(&self.code.api)),
+            ("bench-stream-code-api-own", own(&self.code.api)),
+        ] {
+            record(key, &cuesight_figures::thousands(bytes))?;
         }
         Ok(())
     }

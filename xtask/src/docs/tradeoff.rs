@@ -46,6 +46,26 @@ fn modified(path: &Path) -> Option<SystemTime> {
     std::fs::metadata(path).and_then(|m| m.modified()).ok()
 }
 
+/// The tracked measurements, `docs/tradeoff.json`.
+pub fn tracked() -> Result<Value> {
+    parse(&docs_file("tradeoff.json"))
+}
+
+/// `docs:value tradeoff MODEL PRECISION BACKEND PROFILE STAT`: an instruction count of
+/// the tracked measurements (`crate::bench::instructions_of`), e.g. `tradeoff seed-exact
+/// f32 libm release mean`.
+pub fn value(spec: &str) -> Result<String> {
+    let words: Vec<&str> = spec.split_whitespace().collect();
+    let query: [&str; 5] = words.as_slice().try_into().map_err(|_| {
+        Failure::new(format!(
+            "`docs:value tradeoff {spec}`: expected MODEL PRECISION BACKEND PROFILE STAT"
+        ))
+    })?;
+    bench::instructions_of(&tracked()?, query).ok_or(Failure::new(format!(
+        "`docs:value tradeoff {spec}`: no such count in docs/tradeoff.json"
+    )))
+}
+
 /// A bench run newer than the tracked measurements, if there is one.
 fn newer_bench_run() -> Option<PathBuf> {
     let run = bench::measured_json();

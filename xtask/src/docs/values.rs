@@ -178,7 +178,7 @@ pub(super) fn value(name: &str) -> Result<String> {
 
 /// A figure recorded by the test that measures it (`cuesight_figures::record!`).
 /// `KEY by-hand` (an ignored test's figure) renders as what the docs hold when it is
-/// not recorded: [`run`] counts those as unchecked.
+/// not recorded: [`run`](super::run) counts those as unchecked.
 pub(super) fn figure(spec: &str) -> Result<String> {
     let (key, by_hand) = match spec.split_once(' ') {
         Some((key, "by-hand")) => (key, true),
