@@ -60,9 +60,16 @@ pub fn firmware_dir() -> PathBuf {
     root().join("firmware")
 }
 
-/// `cargo`, the same one that runs xtask when possible.
+/// `cargo`, the same one that runs xtask when possible, without clippy as the
+/// workspace's compiler: `.ci/run` builds xtask linted (`crate::tools::host_cargo`), and
+/// the builds that must be plain (the firmware images, whose sizes are budgeted; fuzz;
+/// installs) would otherwise inherit it.
 pub fn cargo() -> Command {
-    Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()))
+    let mut cargo = Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()));
+    cargo
+        .env_remove("RUSTC_WORKSPACE_WRAPPER")
+        .env_remove("CLIPPY_ARGS");
+    cargo
 }
 
 /// Human-readable form of a command, for the log.

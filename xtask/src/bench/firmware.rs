@@ -163,6 +163,22 @@ pub fn measure(scenes: &Path, dir: &Path, timeout: Duration) -> Result<Vec<Run>>
     Ok(runs)
 }
 
+/// Builds the release image of `bench-firmware`'s binary `bin`, runs it in QEMU and
+/// returns what it printed (kept in `target/<bin>.txt` of the bench firmware).
+pub(super) fn run_probe(bin: &str, timeout: Duration) -> Result<String> {
+    tools::ensure_qemu()?;
+    cmd::run(
+        cmd::cargo()
+            .args(["build", "--release", "--bin", bin])
+            .current_dir(bench_firmware_dir()),
+    )?;
+    let elf = target_dir().join(tools::TARGET).join("release").join(bin);
+    let listing = target_dir().join(format!("{bin}.txt"));
+    run_qemu_with(&[], &elf, &listing, timeout)?;
+    std::fs::read_to_string(&listing)
+        .map_err(|e| Failure::new(format!("reading {}: {e}", listing.display())))
+}
+
 /// Runs `elf` in QEMU with its stdout written to `listing`; fails on a non-zero exit
 /// or after `timeout`.
 fn run_qemu(elf: &Path, listing: &Path, timeout: Duration) -> Result {

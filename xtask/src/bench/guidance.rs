@@ -8,10 +8,9 @@
 
 use std::time::Duration;
 
-use super::firmware::{bench_firmware_dir, run_qemu_with, target_dir};
-use crate::cmd::{self, Failure, Result};
+use super::firmware::run_probe;
+use crate::cmd::{Failure, Result};
 use crate::format::thousands;
-use crate::tools;
 
 const PROBE: &str = "guidance-probe";
 
@@ -66,22 +65,11 @@ fn key_part(model: &str) -> String {
 
 /// Builds and runs the probe, prints and records its figures.
 pub fn run(timeout: Duration) -> Result {
-    tools::ensure_qemu()?;
-    cmd::run(
-        cmd::cargo()
-            .args(["build", "--release", "--bin", PROBE])
-            .current_dir(bench_firmware_dir()),
-    )?;
-    let elf = target_dir().join(tools::TARGET).join("release").join(PROBE);
-    let listing = target_dir().join("guidance-probe.txt");
-    run_qemu_with(&[], &elf, &listing, timeout)?;
-    let text = std::fs::read_to_string(&listing)
-        .map_err(|e| Failure::new(format!("reading {}: {e}", listing.display())))?;
+    let text = run_probe(PROBE, timeout)?;
     let probes: Vec<Probe> = text.lines().filter_map(parse_line).collect();
     if probes.len() != 4 {
         return Err(Failure::new(format!(
-            "{}: expected 4 `guidance` lines (forward and inverse-aim × KimGrip and Auto), found {}",
-            listing.display(),
+            "{PROBE}: expected 4 `guidance` lines (forward and inverse-aim × KimGrip and Auto), found {}",
             probes.len()
         )));
     }

@@ -8,9 +8,8 @@
 use std::path::Path;
 use std::time::Duration;
 
-use super::firmware::{bench_firmware_dir, run_qemu_with, target_dir};
-use crate::cmd::{self, Failure, Result};
-use crate::tools;
+use super::firmware::{bench_firmware_dir, run_probe};
+use crate::cmd::{Failure, Result};
 
 const PROBE: &str = "kimgrip-count";
 /// Allowed growth over the baseline.
@@ -30,17 +29,7 @@ pub struct Shot {
 /// Builds and runs the counting image: every shot's count, and the mean over the
 /// fast-path shots as the image prints it (instructions).
 pub fn count_branches() -> Result<(Vec<Shot>, f64)> {
-    tools::ensure_qemu()?;
-    cmd::run(
-        cmd::cargo()
-            .args(["build", "--release", "--bin", PROBE])
-            .current_dir(bench_firmware_dir()),
-    )?;
-    let elf = target_dir().join(tools::TARGET).join("release").join(PROBE);
-    let listing = target_dir().join("kimgrip-count.txt");
-    run_qemu_with(&[], &elf, &listing, Duration::from_secs(120))?;
-    let text = std::fs::read_to_string(&listing)
-        .map_err(|e| Failure::new(format!("reading {}: {e}", listing.display())))?;
+    let text = run_probe(PROBE, Duration::from_secs(120))?;
     let shots: Vec<Shot> = text
         .lines()
         .filter_map(|line| {
@@ -61,7 +50,7 @@ pub fn count_branches() -> Result<(Vec<Shot>, f64)> {
                 .parse::<u64>()
                 .ok()
         })
-        .ok_or_else(|| Failure::new(format!("no `kimgrip-count` line in {}", listing.display())))?;
+        .ok_or_else(|| Failure::new(format!("no `kimgrip-count` line in {PROBE}'s output")))?;
     Ok((shots, mean as f64 / 1000.0))
 }
 
