@@ -27,6 +27,11 @@
 use std::fmt::Display;
 use std::path::PathBuf;
 
+/// `format!` for [`record!`], reachable from crates without `std` in scope (the core's
+/// `no_std` unit tests).
+#[doc(hidden)]
+pub use std::format as __format;
+
 /// Records a figure: `record!(KEY, FORMAT, ARGS...)` formats as `format!` does.
 /// The caller's package and test target name the command that records it.
 #[macro_export]
@@ -37,7 +42,7 @@ macro_rules! record {
             env!("CARGO_CRATE_NAME"),
             option_env!("CARGO_BIN_NAME").is_some(),
             $key,
-            &format!($($format)+),
+            &$crate::__format!($($format)+),
         )
     };
 }
