@@ -80,6 +80,10 @@ pub enum Field {
     SetupRadius,
     /// Aim angle (rad, counter-clockwise from the table's `x` axis).
     AimAngle,
+    /// A cushion's restitution, friction or nose height (`R ≤ h < 2R`).
+    Cushion,
+    /// The spin-decay rate of spinning friction (rad/s²).
+    SpinDecay,
 }
 
 impl Field {
@@ -114,6 +118,8 @@ impl Field {
             Field::Spin => "spin",
             Field::Spacing => "spacing",
             Field::SetupRadius => "setup_radius",
+            Field::Cushion => "cushion",
+            Field::SpinDecay => "spin_decay",
             Field::AimAngle => "aim_angle",
             Field::CueSpeed => "cue_speed",
             Field::CueMass => "cue_mass",
@@ -153,6 +159,8 @@ impl Field {
             Field::Spin => "[-1e6, 1e6] rad/s per component",
             Field::Spacing => "centre distances of at least 2R (balls may touch)",
             Field::SetupRadius => "the scene's ball radius (to 1e-6 relative)",
+            Field::Cushion => "restitution [0, 1], friction [0, 1], nose height [R, 2R) m",
+            Field::SpinDecay => "[0, 1000] rad/s²",
             Field::AimAngle => "[-1000, 1000] rad",
             Field::CueSpeed => "(0, 20] m/s",
             Field::CueMass => "[0.1, 2] kg",
@@ -187,6 +195,14 @@ pub enum Error {
     /// The model asked for was left out of this build ([`crate::Model::built`]; the
     /// `seed-exact` feature), as on the device.
     ModelLeftOut,
+    /// A table simulation had not ended (every ball at rest or pocketed) after its
+    /// event limit or time limit ([`crate::sim`]).
+    Unfinished {
+        /// Events simulated.
+        events: u32,
+        /// Simulated time reached (s).
+        time: f32,
+    },
 }
 
 impl Error {
@@ -194,7 +210,7 @@ impl Error {
     pub const fn field(&self) -> Option<Field> {
         match self {
             Error::NotFinite { field } | Error::OutOfRange { field, .. } => Some(*field),
-            Error::NumericalFailure | Error::ModelLeftOut => None,
+            Error::NumericalFailure | Error::ModelLeftOut | Error::Unfinished { .. } => None,
         }
     }
 }
@@ -218,6 +234,10 @@ impl fmt::Display for Error {
             Error::ModelLeftOut => {
                 f.write_str("this model was left out of this build (cargo feature `seed-exact`)")
             }
+            Error::Unfinished { events, time } => write!(
+                f,
+                "the shot had not ended after {events} events and {time} s (its event or time limit)"
+            ),
         }
     }
 }

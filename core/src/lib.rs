@@ -47,6 +47,7 @@ mod real;
 #[cfg(feature = "seed-exact")]
 mod seed_exact;
 pub mod shot;
+pub mod sim;
 pub mod strike;
 pub mod table;
 pub mod travel;

@@ -226,7 +226,7 @@ impl Motion {
     /// time `offset`. Displacements from the start rather than positions: they keep
     /// their digits whatever the start, and a mirrored start gives exactly mirrored
     /// times.
-    fn phases(&self) -> [(f32, f32, Vec3, Vec3, Vec3); 3] {
+    pub(crate) fn phases(&self) -> [(f32, f32, Vec3, Vec3, Vec3); 3] {
         let speed = self.rolling_velocity.length();
         let rolling_direction = if speed > 0.0 {
             self.rolling_velocity * (1.0 / speed)

@@ -1,0 +1,317 @@
+//! The event loop of [`crate::sim`]: cached event times, the earliest event, its
+//! resolution.
+
+use super::boundary::{Boundary, Edge};
+use super::pair::{contact_time, resolve, State};
+use super::track::Track;
+use super::{Event, EventKind, Setup, MAX_TIME};
+use crate::error::{Error, Field, Result};
+use crate::shot::{check_model, Stroke};
+use crate::strike::strike;
+use crate::table::{Scene, MAX_BALLS};
+use crate::travel::Motion;
+use crate::vector::Vec3;
+
+/// Pairs of distinct balls.
+const PAIRS: usize = MAX_BALLS * (MAX_BALLS - 1) / 2;
+
+/// A ball set moving: velocity (m/s, table frame; `z > 0` a hop) and spin (rad/s).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Launch {
+    /// Index of the ball in the scene.
+    pub ball: usize,
+    /// Its velocity.
+    pub velocity: Vec3,
+    /// Its spin.
+    pub spin: Vec3,
+}
+
+/// Where the balls ended.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Finish {
+    rest: heapless::Vec<Option<Vec3>, MAX_BALLS>,
+    /// Time from the stroke until the last ball stopped or dropped (s).
+    pub time: f32,
+    /// Events simulated.
+    pub events: u32,
+}
+
+impl Finish {
+    /// Where ball `ball` rests (m), `None` if it dropped into a pocket (or there is no
+    /// such ball).
+    pub fn position(&self, ball: usize) -> Option<Vec3> {
+        self.rest.get(ball).copied().flatten()
+    }
+
+    /// Every ball's rest position in scene order, `None` for a pocketed one.
+    pub fn positions(&self) -> &[Option<Vec3>] {
+        &self.rest
+    }
+}
+
+/// The balls' paths at an event: what the sink of [`simulate`] can draw.
+pub struct Paths<'a> {
+    balls: &'a [Ball],
+}
+
+impl Paths<'_> {
+    /// Ball `ball`'s path from its last event on: the simulation time it starts (s) and
+    /// the motion from there; `None` once the ball has dropped.
+    pub fn motion(&self, ball: usize) -> Option<(f32, &Motion)> {
+        let b = self.balls.get(ball)?;
+        (!b.pocketed).then_some((b.track.since, &b.track.motion))
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Ball {
+    track: Track,
+    pocketed: bool,
+    /// Simulation time of the stop still to report (∞ when none is).
+    rest: f32,
+    /// Next exit from the cloth (∞ when none).
+    exit: (f32, Option<Edge>),
+}
+
+/// Play `stroke` on `scene` (the cue ball is ball 0) and simulate the whole table.
+/// `sink` sees every event as it happens, with the paths from it on.
+///
+/// Errors: those of [`simulate`], and the stroke's ([`crate::strike::strike`]).
+pub fn play(
+    scene: &Scene,
+    stroke: &Stroke,
+    setup: &Setup,
+    sink: impl FnMut(&Event, &Paths<'_>),
+) -> Result<Finish> {
+    let shot = &setup.shot;
+    let launch = strike(&shot.params, &shot.cue, stroke.tip, stroke.cue_speed)?;
+    let aim = stroke.aim();
+    let side = Vec3::new(-aim.y, aim.x, 0.0); // ẑ × aim
+    let spin = aim * launch.spin.x + side * launch.spin.y + Vec3::new(0.0, 0.0, launch.spin.z);
+    let cue = Launch {
+        ball: 0,
+        velocity: aim * launch.speed,
+        spin,
+    };
+    simulate(scene, &[cue], setup, sink)
+}
+
+/// Simulate `scene`'s balls, at rest but for `launches`, until every ball rests or
+/// drops. `sink` sees every event as it happens, with the paths from it on.
+///
+/// Errors: the setup's ball radius is not the scene's ([`Field::SetupRadius`]), its
+/// cushion or spin decay is out of range ([`Field::Cushion`], [`Field::SpinDecay`]), a
+/// launch names no ball ([`Field::BallIndex`]) or has a velocity or spin out of range
+/// ([`Field::Velocity`], [`Field::Spin`]), a ball lies in a pocket's mouth
+/// ([`Field::Position`]; the scene already keeps balls on the cloth and apart), the
+/// `Auto` tolerance is out of range ([`Field::Tolerance`]), a collision's input is out
+/// of the models' range, or the shot has not ended after `setup.max_events` events or
+/// [`MAX_TIME`] ([`Error::Unfinished`]).
+pub fn simulate(
+    scene: &Scene,
+    launches: &[Launch],
+    setup: &Setup,
+    mut sink: impl FnMut(&Event, &Paths<'_>),
+) -> Result<Finish> {
+    let radius = scene.radius();
+    let params = &setup.shot.params;
+    if crate::math::abs(params.radius() - radius) > 1e-6 * radius {
+        return Err(Error::OutOfRange {
+            field: Field::SetupRadius,
+            value: params.radius(),
+        });
+    }
+    setup.check(radius)?;
+    check_model(setup.shot.model)?;
+    let boundary = Boundary::new(scene.table(), radius);
+    let cloth = &setup.shot.cloth;
+    let mut balls: heapless::Vec<Ball, MAX_BALLS> = heapless::Vec::new();
+    for &position in scene.balls() {
+        if !boundary.contains(position) {
+            return Err(Error::OutOfRange {
+                field: Field::Position,
+                value: position.x,
+            });
+        }
+        let motion = Motion::new(position, Vec3::ZERO, Vec3::ZERO, radius, cloth)?;
+        let ball = Ball {
+            track: Track::new(motion, 0.0, setup.spin_decay),
+            pocketed: false,
+            rest: f32::INFINITY,
+            exit: (f32::INFINITY, None),
+        };
+        // The scene holds at most MAX_BALLS.
+        let _ = balls.push(ball);
+    }
+    let mut dirty: u32 = 0;
+    for launch in launches {
+        let ball = balls.get_mut(launch.ball).ok_or(Error::OutOfRange {
+            field: Field::BallIndex,
+            value: launch.ball as f32,
+        })?;
+        let position = ball.track.motion.start;
+        let motion = Motion::new(position, launch.velocity, launch.spin, radius, cloth)?;
+        ball.track = Track::new(motion, 0.0, setup.spin_decay);
+        dirty |= 1 << launch.ball;
+    }
+    let reach = 2.0 * radius;
+    let mut pair_times = [f32::INFINITY; PAIRS];
+    let mut now = 0.0f32;
+    let mut events = 0u32;
+    loop {
+        // Refresh every cached time that involves a ball whose path changed.
+        for i in 0..balls.len() {
+            if dirty & (1 << i) == 0 {
+                continue;
+            }
+            let ball = &mut balls[i];
+            if ball.pocketed {
+                ball.rest = f32::INFINITY;
+                ball.exit = (f32::INFINITY, None);
+            } else {
+                let stop = ball.track.stop();
+                ball.rest = if stop > ball.track.since {
+                    stop
+                } else {
+                    f32::INFINITY
+                };
+                ball.exit = boundary
+                    .exit(&ball.track, now)
+                    .map_or((f32::INFINITY, None), |(t, edge)| (t, Some(edge)));
+            }
+            for j in 0..balls.len() {
+                if j == i || (dirty & (1 << j) != 0 && j < i) {
+                    continue; // itself, or a pair already refreshed from j's side
+                }
+                let (a, b) = (&balls[i], &balls[j]);
+                pair_times[pair_index(i, j)] = if a.pocketed || b.pocketed {
+                    f32::INFINITY
+                } else {
+                    contact_time(&a.track, &b.track, now, reach).unwrap_or(f32::INFINITY)
+                };
+            }
+        }
+        dirty = 0;
+
+        // The earliest event.
+        let mut next: Option<(f32, EventKind, usize, Option<usize>)> = None;
+        let mut consider = |time: f32, kind: EventKind, ball: usize, other: Option<usize>| {
+            if time < f32::INFINITY && next.is_none_or(|(t, ..)| time < t) {
+                next = Some((time, kind, ball, other));
+            }
+        };
+        for i in 0..balls.len() {
+            for j in i + 1..balls.len() {
+                consider(pair_times[pair_index(i, j)], EventKind::Ball, i, Some(j));
+            }
+        }
+        for (i, ball) in balls.iter().enumerate() {
+            if let (time, Some(edge)) = ball.exit {
+                let kind = match edge {
+                    Edge::Pocket(pocket) => EventKind::Pocket(pocket),
+                    Edge::Cushion(_) => EventKind::Cushion,
+                };
+                consider(time, kind, i, None);
+            }
+            consider(ball.rest, EventKind::Rest, i, None);
+        }
+        let Some((time, kind, i, other)) = next else {
+            break;
+        };
+        if events >= setup.max_events || time > MAX_TIME {
+            return Err(Error::Unfinished { events, time: now });
+        }
+        now = if time > now { time } else { now };
+        let state = |ball: &Ball| State {
+            position: ball.track.position_at(now),
+            velocity: ball.track.velocity_at(now),
+            spin: ball.track.spin_at(now),
+        };
+        let position = balls[i].track.position_at(now);
+        let restart = |state: &State| -> Result<Track> {
+            let motion = Motion::new(state.position, state.velocity, state.spin, radius, cloth)?;
+            Ok(Track::new(motion, now, setup.spin_decay))
+        };
+        let happened = match (kind, other) {
+            (EventKind::Ball, Some(j)) => {
+                match resolve(
+                    params,
+                    setup.shot.model,
+                    &state(&balls[i]),
+                    &state(&balls[j]),
+                )? {
+                    Some((a, b)) => {
+                        balls[i].track = restart(&a)?;
+                        balls[j].track = restart(&b)?;
+                        dirty |= (1 << i) | (1 << j);
+                        true
+                    }
+                    None => {
+                        // Not approaching after all (a graze within rounding): no event
+                        // for this pair until one of the two changes.
+                        pair_times[pair_index(i, j)] = f32::INFINITY;
+                        false
+                    }
+                }
+            }
+            (EventKind::Cushion, _) => {
+                let ball = &balls[i];
+                let Some(Edge::Cushion(normal)) = ball.exit.1 else {
+                    return Err(Error::NumericalFailure);
+                };
+                let before = state(ball);
+                if before.velocity.dot(normal) > 0.0 {
+                    let (velocity, spin) =
+                        setup
+                            .cushion
+                            .rebound(radius, before.velocity, before.spin, normal);
+                    balls[i].track = restart(&State {
+                        velocity,
+                        spin,
+                        ..before
+                    })?;
+                    dirty |= 1 << i;
+                    true
+                } else {
+                    balls[i].exit = (f32::INFINITY, None);
+                    false
+                }
+            }
+            (EventKind::Pocket(_), _) => {
+                balls[i].pocketed = true;
+                dirty |= 1 << i;
+                true
+            }
+            _ => {
+                balls[i].rest = f32::INFINITY;
+                true
+            }
+        };
+        if happened {
+            events += 1;
+            let event = Event {
+                time: now,
+                kind,
+                ball: i,
+                other,
+                position,
+            };
+            sink(&event, &Paths { balls: &balls });
+        }
+    }
+    let mut rest = heapless::Vec::new();
+    for ball in &balls {
+        let _ = rest.push((!ball.pocketed).then(|| ball.track.motion.rest()));
+    }
+    Ok(Finish {
+        rest,
+        time: now,
+        events,
+    })
+}
+
+/// Index of the pair `{i, j}`, `i ≠ j`, in `0..PAIRS`.
+fn pair_index(i: usize, j: usize) -> usize {
+    let (low, high) = if i < j { (i, j) } else { (j, i) };
+    high * (high - 1) / 2 + low
+}
