@@ -52,6 +52,7 @@ use crate::model::Model;
 use crate::params::Params;
 use crate::shot::ShotSetup;
 use crate::strike::Cue;
+use crate::table::BallSet;
 use crate::travel::{Cloth, GRAVITY};
 use crate::vector::Vec3;
 
@@ -95,6 +96,29 @@ impl Setup {
         spin_decay: SPIN_DECAY,
         max_events: MAX_EVENTS,
     };
+
+    /// [`Setup::POOL`] for the balls `balls` and the cushions `cushion`.
+    pub fn with_balls(self, balls: BallSet, cushion: Cushion) -> Result<Self> {
+        Ok(Self {
+            shot: ShotSetup {
+                params: self.shot.params.with_ball(balls.radius, balls.mass)?,
+                ..self.shot
+            },
+            cushion,
+            ..self
+        })
+    }
+
+    /// Carom: [`Setup::POOL`] with carom balls ([`BallSet::CAROM`]) and cushions
+    /// ([`Cushion::CAROM`]).
+    pub fn carom() -> Result<Self> {
+        Self::POOL.with_balls(BallSet::CAROM, Cushion::CAROM)
+    }
+
+    /// Snooker: [`Setup::POOL`] with snooker balls and cushions.
+    pub fn snooker() -> Result<Self> {
+        Self::POOL.with_balls(BallSet::SNOOKER, Cushion::SNOOKER)
+    }
 
     fn check(&self, radius: f32) -> Result<()> {
         check(Field::SpinDecay, self.spin_decay, 0.0, 1000.0, false)?;

@@ -54,13 +54,13 @@ impl Cushion {
         height: 0.037,
     };
     /// Snooker cushions: pool's restitution and friction and the same nose height in
-    /// radii (`1.28 R` = 33.5 mm for 52.4 mm balls). An assumption, not a measured
+    /// radii (`1.28 R` = 33.6 mm for 52.5 mm balls). An assumption, not a measured
     /// figure: pooltool's snooker heights (28 mm in 0.6, 39 mm since) disagree with
     /// each other.
     pub const SNOOKER: Self = Self {
         restitution: 0.85,
         friction: 0.2,
-        height: 0.033528,
+        height: 0.0336,
     };
 
     /// A cushion of restitution `restitution` and friction `friction` (each in `[0, 1]`)
@@ -149,5 +149,140 @@ impl Cushion {
             normal * v_x + across * v_y,
             normal * w_x + across * w_y + Vec3::new(0.0, 0.0, w_z),
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+
+    type V = [f64; 3];
+    fn add(a: V, b: V) -> V {
+        [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+    }
+    fn scale(a: V, k: f64) -> V {
+        [a[0] * k, a[1] * k, a[2] * k]
+    }
+    fn dot(a: V, b: V) -> f64 {
+        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    }
+    fn cross(a: V, b: V) -> V {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    }
+
+    /// The same impact from vector mechanics, without Han's component equations: the
+    /// nose touches the ball at `r_c = R (cos θ n̂ + sin θ ẑ)` from its centre; the
+    /// contact point's velocity is `u = v + ω × r_c`; an impulse `P` there changes it
+    /// by `P/M` along the normal `r̂_c` and by `(1/M + R²/I) P` across it (a sphere);
+    /// the normal impulse is `(1 + e) M` times the approach `u · r̂_c`, the tangential
+    /// one stops the tangential slip if that fits in the Coulomb cone, else is `μ` times
+    /// the normal one against the slip; `Δv = P/M` without its vertical part (the cloth
+    /// takes it), `Δω = r_c × P / I`. Per unit mass, f64.
+    fn reference(cushion: &Cushion, radius: f64, v: V, w: V, n: V) -> (V, V, bool) {
+        let sin_theta = f64::from(cushion.height) / radius - 1.0;
+        let cos_theta = (1.0 - sin_theta * sin_theta).sqrt();
+        let r_hat = add(scale(n, cos_theta), [0.0, 0.0, sin_theta]);
+        let r_c = scale(r_hat, radius);
+        let u = add(v, cross(w, r_c));
+        let approach = dot(u, r_hat);
+        assert!(approach > 0.0);
+        let normal = (1.0 + f64::from(cushion.restitution)) * approach;
+        let tangential = add(u, scale(r_hat, -approach));
+        let slip = dot(tangential, tangential).sqrt();
+        let compliance = 1.0 + 1.0 / f64::from(NU);
+        let friction = f64::from(cushion.friction);
+        let grips = slip <= compliance * friction * normal;
+        let p_t = if grips {
+            scale(tangential, -1.0 / compliance)
+        } else {
+            scale(tangential, -friction * normal / slip)
+        };
+        let p = add(scale(r_hat, -normal), p_t);
+        let v_after = [v[0] + p[0], v[1] + p[1], 0.0];
+        let w_after = add(
+            w,
+            scale(cross(r_c, p), 1.0 / (f64::from(NU) * radius * radius)),
+        );
+        (v_after, w_after, grips)
+    }
+
+    /// Han's components against the vector form, over incidence angles, speeds, spins
+    /// (follow, draw, side, both), cushions (pool, carom, a high and a low nose, no
+    /// friction, dead and perfectly elastic) and normals in every direction: gripping and
+    /// sliding contacts both occur.
+    #[test]
+    fn han_components_agree_with_the_vector_mechanics_of_the_same_impact() {
+        let radius = 0.028575f32;
+        let cushions = [
+            Cushion::POOL,
+            Cushion::new(0.85, 0.15, 0.037 * radius / 0.03075).unwrap(),
+            Cushion::new(0.5, 0.6, 1.9 * radius).unwrap(),
+            Cushion::new(1.0, 0.0, 1.05 * radius).unwrap(),
+            Cushion::new(0.0, 1.0, 1.28 * radius).unwrap(),
+        ];
+        let (mut worst, mut grips, mut slides) = (0.0f64, 0, 0);
+        for cushion in &cushions {
+            for normal_angle in [0.0f32, 1.0, 2.5, 4.0] {
+                let n = Vec3::new(math::cos(normal_angle), math::sin(normal_angle), 0.0);
+                let t = Vec3::new(-n.y, n.x, 0.0);
+                for incidence in [0.0f32, 0.3, 0.8, 1.2, 1.5] {
+                    for speed in [0.1f32, 1.0, 4.0] {
+                        let v = (n * math::cos(incidence) + t * math::sin(incidence)) * speed;
+                        for (top, side) in [
+                            (0.0f32, 0.0f32),
+                            (1.0, 0.0),
+                            (-1.0, 0.0),
+                            (0.0, 1.0),
+                            (0.5, -1.5),
+                        ] {
+                            // Natural roll along v is ẑ × v / R; add side spin about z.
+                            let roll = Vec3::new(-v.y, v.x, 0.0) * (1.0 / radius);
+                            let w = roll * top + Vec3::new(0.0, 0.0, side * speed / radius);
+                            let (v1, w1) = cushion.rebound(radius, v, w, n);
+                            let f = |a: Vec3| [f64::from(a.x), f64::from(a.y), f64::from(a.z)];
+                            let (rv, rw, gripped) =
+                                reference(cushion, f64::from(radius), f(v), f(w), f(n));
+                            let error_v =
+                                (0..3).map(|k| (f(v1)[k] - rv[k]).abs()).fold(0.0, f64::max);
+                            let error_w =
+                                (0..3).map(|k| (f(w1)[k] - rw[k]).abs()).fold(0.0, f64::max);
+                            let error = (error_v + f64::from(radius) * error_w) / f64::from(speed);
+                            worst = worst.max(error);
+                            assert!(error < 2e-6, "{cushion:?} n {n:?} v {v:?} w {w:?}: {v1:?} {w1:?} vs {rv:?} {rw:?}");
+                            if gripped {
+                                grips += 1
+                            } else {
+                                slides += 1
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        std::println!("worst {worst:.2e} of the speed; {grips} gripping, {slides} sliding");
+        assert!(grips > 50 && slides > 50, "{grips} {slides}");
+    }
+
+    /// A ball straight into a frictionless cushion: the normal impulse along the tilted
+    /// normal, `(1 + e) v cos θ`, has the horizontal part `(1 + e) v cos² θ` (eqs. 21–23),
+    /// so it leaves at `v (1 − (1 + e) cos² θ)`: slower than `e v` because the nose
+    /// pushes it partly into the cloth (θ = 16.3° on pool cushions: 0.70 v, not 0.85 v).
+    #[test]
+    fn a_head_on_frictionless_rebound_is_one_minus_one_plus_e_cos_squared_theta() {
+        let radius = 0.028575f32;
+        let cushion = Cushion::new(0.85, 0.0, 1.28 * radius).unwrap();
+        let n = Vec3::new(1.0, 0.0, 0.0);
+        let (v1, _) = cushion.rebound(radius, Vec3::new(2.0, 0.0, 0.0), Vec3::ZERO, n);
+        let sin_theta = 0.28f32;
+        let expected = 2.0 * (1.0 - 1.85 * (1.0 - sin_theta * sin_theta));
+        assert!(
+            (v1.x - expected).abs() < 1e-5 && v1.y.abs() < 1e-6,
+            "{v1:?} vs {expected}"
+        );
     }
 }

@@ -119,3 +119,100 @@ fn energy_never_grows_and_balls_never_overlap_at_any_event() {
     }
     assert!(checked >= 390, "{checked}");
 }
+
+#[test]
+fn every_bad_input_is_a_typed_error_naming_it() {
+    let mut scene = Scene::new(Table::pool(), R, [0.635, 0.635]).unwrap();
+    scene.add_ball([1.27, 0.635]).unwrap();
+    let stroke = Stroke::new(3.0, TipOffset::CENTRE, [1.0, 0.0]).unwrap();
+    let field = |result: crate::Result<Finish>| result.unwrap_err().field();
+    // A shot that does not end within its event limit.
+    let short = Setup {
+        max_events: 2,
+        ..Setup::POOL
+    };
+    assert!(matches!(
+        play(&scene, &stroke, &short, |_, _| {}),
+        Err(Error::Unfinished { events: 2, .. })
+    ));
+    // Cushions whose nose is below the ball's equator or above its top.
+    for height in [0.9 * R, 2.0 * R] {
+        let low = Setup {
+            cushion: Cushion::new(0.85, 0.2, height).unwrap(),
+            ..Setup::POOL
+        };
+        assert_eq!(
+            field(play(&scene, &stroke, &low, |_, _| {})),
+            Some(crate::Field::Cushion)
+        );
+    }
+    assert_eq!(
+        Cushion::new(1.5, 0.2, 0.03).unwrap_err().field(),
+        Some(crate::Field::Cushion)
+    );
+    assert_eq!(
+        Cushion::new(0.8, f32::NAN, 0.03).unwrap_err().field(),
+        Some(crate::Field::Cushion)
+    );
+    let spin = Setup {
+        spin_decay: -1.0,
+        ..Setup::POOL
+    };
+    assert_eq!(
+        field(play(&scene, &stroke, &spin, |_, _| {})),
+        Some(crate::Field::SpinDecay)
+    );
+    // Balls of another size than the setup's.
+    assert_eq!(
+        field(play(&scene, &stroke, &Setup::carom().unwrap(), |_, _| {})),
+        Some(crate::Field::SetupRadius)
+    );
+    // A launch of a ball that is not there, or out of range.
+    let launch = |ball, speed| {
+        [Launch {
+            ball,
+            velocity: Vec3::new(speed, 0.0, 0.0),
+            spin: Vec3::ZERO,
+        }]
+    };
+    assert_eq!(
+        field(simulate(&scene, &launch(5, 1.0), &Setup::POOL, |_, _| {})),
+        Some(crate::Field::BallIndex)
+    );
+    assert_eq!(
+        field(simulate(&scene, &launch(1, 2e3), &Setup::POOL, |_, _| {})),
+        Some(crate::Field::Velocity)
+    );
+    // A ball in a corner pocket's mouth: on the cloth, but past the mouth line.
+    let mut corner = Scene::new(Table::pool(), R, [0.635, 0.635]).unwrap();
+    corner.add_ball([R * 1.05, R * 1.05]).unwrap();
+    assert_eq!(
+        field(play(&corner, &stroke, &Setup::POOL, |_, _| {})),
+        Some(crate::Field::Position)
+    );
+    // Capacity and overlap are the scene's: it never holds more than 16 balls or two
+    // overlapping ones (`Scene::add_ball`).
+}
+
+#[test]
+fn a_three_cushion_carom_shot_plays_to_the_end() {
+    let setup = Setup::carom().unwrap();
+    let r = BallSet::CAROM.radius;
+    let mut scene = Scene::new(Table::carom(), r, [0.7, 0.4]).unwrap();
+    scene.add_ball([1.4, 0.9]).unwrap();
+    scene.add_ball([2.2, 1.1]).unwrap();
+    let stroke = Stroke::at_angle(4.0, TipOffset::new(0.3 * r, 0.2 * r).unwrap(), 0.6).unwrap();
+    let (mut cushions, mut balls) = (0, 0);
+    let end = play(&scene, &stroke, &setup, |event, _| match event.kind {
+        EventKind::Cushion => cushions += 1,
+        EventKind::Ball => balls += 1,
+        EventKind::Pocket(_) => panic!("a carom table has no pockets"),
+        EventKind::Rest => {}
+    })
+    .unwrap();
+    assert!(
+        cushions >= 3 && balls >= 1,
+        "{cushions} cushions, {balls} collisions"
+    );
+    assert!(end.positions().iter().all(Option::is_some));
+}
