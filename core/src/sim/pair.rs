@@ -110,6 +110,42 @@ fn min3(a: f32, b: f32, c: f32) -> f32 {
     }
 }
 
+/// Closing speed of `a` and `b` along their line of centres (m/s; negative when they
+/// separate).
+pub(crate) fn closing_speed(a: &State, b: &State) -> f32 {
+    let line = b.position - a.position;
+    let line = Vec3::new(line.x, line.y, 0.0);
+    let distance = line.length();
+    if distance <= 0.0 || distance.is_nan() {
+        return 0.0;
+    }
+    (a.velocity - b.velocity).dot(line) * (1.0 / distance)
+}
+
+/// `a` and `b` locked together: both take the mean velocity and the mean spin, so that
+/// they move as one, touching, until something else hits one of them. For two balls
+/// pressed together by their different decelerations (one rolling into another that
+/// slows along another direction), whose collisions would otherwise repeat without end
+/// (inelastic collapse). Momentum is kept and kinetic energy does not grow: the mean's
+/// square is at most the mean of the squares.
+pub(crate) fn lock(a: &State, b: &State) -> (State, State) {
+    let velocity = (a.velocity + b.velocity) * 0.5;
+    let velocity = Vec3::new(velocity.x, velocity.y, 0.0);
+    let spin = (a.spin + b.spin) * 0.5;
+    (
+        State {
+            position: a.position,
+            velocity,
+            spin,
+        },
+        State {
+            position: b.position,
+            velocity,
+            spin,
+        },
+    )
+}
+
 /// The states of `a` and `b` after they collide with `params` and `model`, or `None` if
 /// they are not approaching along their line of centres (a graze within rounding).
 pub(crate) fn resolve(

@@ -2,7 +2,7 @@
 //! resolution.
 
 use super::boundary::{Boundary, Edge};
-use super::pair::{contact_time, resolve, State};
+use super::pair::{closing_speed, contact_time, lock, resolve, State};
 use super::track::Track;
 use super::{Event, EventKind, Setup, MAX_TIME};
 use crate::error::{Error, Field, Result};
@@ -71,7 +71,19 @@ struct Ball {
     rest: f32,
     /// Next exit from the cloth (∞ when none).
     exit: (f32, Option<Edge>),
+    /// The ball it last collided with, and when (s).
+    last_contact: Option<(usize, f32)>,
+    /// When it last hit a cushion (s).
+    last_cushion: Option<f32>,
 }
+
+/// Two balls that collide again within this time (s) of their last collision, closing
+/// slower than [`LOCK_SPEED`], are locked together ([`lock`]); a ball that hits a cushion
+/// so soon after its last cushion (the same one, or the other of a corner) and so slowly
+/// runs along it ([`along_cushion`]).
+const LOCK_TIME: f32 = 0.01;
+/// See [`LOCK_TIME`] (m/s).
+const LOCK_SPEED: f32 = 0.01;
 
 /// Play `stroke` on `scene` (the cue ball is ball 0) and simulate the whole table.
 /// `sink` sees every event as it happens, with the paths from it on.
@@ -139,6 +151,8 @@ pub fn simulate(
             pocketed: false,
             rest: f32::INFINITY,
             exit: (f32::INFINITY, None),
+            last_contact: None,
+            last_cushion: None,
         };
         // The scene holds at most MAX_BALLS.
         let _ = balls.push(ball);
@@ -158,6 +172,7 @@ pub fn simulate(
     let mut pair_times = [f32::INFINITY; PAIRS];
     let mut now = 0.0f32;
     let mut events = 0u32;
+    let mut attempts = 0u32;
     loop {
         // Refresh every cached time that involves a ball whose path changed.
         for i in 0..balls.len() {
@@ -218,7 +233,10 @@ pub fn simulate(
         let Some((time, kind, i, other)) = next else {
             break;
         };
-        if events >= setup.max_events || time > MAX_TIME {
+        // Every candidate counts towards the limit, those found not to happen too:
+        // each of them moves time on (`later`), but only by a little.
+        attempts += 1;
+        if events >= setup.max_events || attempts > 4 * setup.max_events || time > MAX_TIME {
             return Err(Error::Unfinished { events, time: now });
         }
         now = if time > now { time } else { now };
@@ -234,22 +252,32 @@ pub fn simulate(
         };
         let happened = match (kind, other) {
             (EventKind::Ball, Some(j)) => {
-                match resolve(
-                    params,
-                    setup.shot.model,
-                    &state(&balls[i]),
-                    &state(&balls[j]),
-                )? {
+                let (a, b) = (state(&balls[i]), state(&balls[j]));
+                let again = balls[i]
+                    .last_contact
+                    .is_some_and(|(k, t)| k == j && now - t < LOCK_TIME);
+                let after = if again && closing_speed(&a, &b) < LOCK_SPEED {
+                    Some(lock(&a, &b))
+                } else {
+                    resolve(params, setup.shot.model, &a, &b)?
+                };
+                match after {
                     Some((a, b)) => {
                         balls[i].track = restart(&a)?;
                         balls[j].track = restart(&b)?;
+                        balls[i].last_contact = Some((j, now));
+                        balls[j].last_contact = Some((i, now));
                         dirty |= (1 << i) | (1 << j);
                         true
                     }
                     None => {
-                        // Not approaching after all (a graze within rounding): no event
-                        // for this pair until one of the two changes.
-                        pair_times[pair_index(i, j)] = f32::INFINITY;
+                        // Not approaching at the contact after all: touching within
+                        // rounding just after a collision, or a graze. Look again from a
+                        // moment later (two balls pressed together by their
+                        // decelerations then collide as soon as they approach).
+                        let (a, b) = (&balls[i].track, &balls[j].track);
+                        pair_times[pair_index(i, j)] =
+                            contact_time(a, b, later(now), reach).unwrap_or(f32::INFINITY);
                         false
                     }
                 }
@@ -260,20 +288,30 @@ pub fn simulate(
                     return Err(Error::NumericalFailure);
                 };
                 let before = state(ball);
-                if before.velocity.dot(normal) > 0.0 {
-                    let (velocity, spin) =
+                let approach = before.velocity.dot(normal);
+                if approach > 0.0 {
+                    let again = ball.last_cushion.is_some_and(|t| now - t < LOCK_TIME);
+                    let (velocity, spin) = if again && approach < LOCK_SPEED {
+                        along_cushion(before.velocity, before.spin, normal)
+                    } else {
                         setup
                             .cushion
-                            .rebound(radius, before.velocity, before.spin, normal);
+                            .rebound(radius, before.velocity, before.spin, normal)
+                    };
                     balls[i].track = restart(&State {
                         velocity,
                         spin,
                         ..before
                     })?;
+                    balls[i].last_cushion = Some(now);
                     dirty |= 1 << i;
                     true
                 } else {
-                    balls[i].exit = (f32::INFINITY, None);
+                    // Not moving into the cushion at the line (within rounding): look
+                    // again from a moment later.
+                    balls[i].exit = boundary
+                        .exit(&balls[i].track, later(now))
+                        .map_or((f32::INFINITY, None), |(t, edge)| (t, Some(edge)));
                     false
                 }
             }
@@ -308,6 +346,30 @@ pub fn simulate(
         time: now,
         events,
     })
+}
+
+/// A ball pressed into a cushion by its own slip (side spin or a sliding curve into
+/// it), whose rebounds would otherwise repeat without end: it keeps the velocity and
+/// spin parallel to the cushion and loses their parts that move the contact into it
+/// (the normal velocity, and the spin about the horizontal along the cushion, which
+/// drives the cloth slip across it), so it runs along the cushion. Both parts are
+/// removed, so kinetic energy does not grow; the cushion's friction while the ball runs
+/// along it is not modelled.
+fn along_cushion(velocity: Vec3, spin: Vec3, normal: Vec3) -> (Vec3, Vec3) {
+    let along = Vec3::new(-normal.y, normal.x, 0.0); // ẑ × n
+    let velocity = Vec3::new(velocity.x, velocity.y, 0.0);
+    (
+        velocity - normal * velocity.dot(normal),
+        spin - along * spin.dot(along),
+    )
+}
+
+/// A moment after `t` (s): 1 µs, or a millionth of `t` where that is more (its f32
+/// spacing is 1/8 of that at most): far shorter than any event of a shot, long enough
+/// to move past a rounding.
+fn later(t: f32) -> f32 {
+    let step = 1e-6 * t;
+    t + if step > 1e-6 { step } else { 1e-6 }
 }
 
 /// Index of the pair `{i, j}`, `i ≠ j`, in `0..PAIRS`.
