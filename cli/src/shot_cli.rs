@@ -11,6 +11,7 @@
 
 pub mod input;
 pub mod report;
+pub mod table_report;
 
 use std::fmt;
 use std::process::ExitCode;
@@ -23,6 +24,7 @@ use cuesight::travel::Motion;
 pub use cuesight::guidance::{End, PathEnd};
 pub use input::{Flags, Request};
 pub use report::{to_json, ShotReport};
+pub use table_report::TableOutcome;
 
 /// Exit code for an invalid value, no solution, or an output file not written.
 pub const EXIT_INVALID: u8 = crate::cli::EXIT_INVALID;
@@ -83,6 +85,8 @@ pub struct Played {
     pub object_end: Option<PathEnd>,
     /// The core's guidance, which the report presents.
     pub guidance: Guidance,
+    /// The whole table after the shot.
+    pub table: TableOutcome,
     /// The answer.
     pub report: ShotReport,
 }
@@ -155,8 +159,10 @@ pub fn play_request(request: Request) -> Result<Played, ShotError> {
     })?;
     let stroke = Stroke::new(request.speed, request.tip, guidance.stroke.aim).map_err(invalid)?;
     let shot = play(scene, &stroke, setup).map_err(invalid)?;
-    let report = ShotReport::new(&request, &guidance);
+    let table = table_report::simulate(&request, &stroke, &shot.cue_before)?;
+    let report = ShotReport::new(&request, &guidance, &table);
     Ok(Played {
+        table,
         stroke,
         solution: guidance.solve.map(|s| s.solution),
         shot,

@@ -675,3 +675,94 @@ fn invalid_scenes_name_the_problem() {
         "svg file",
     );
 }
+
+/// Issue 17: the whole table. `"final"` has one entry per ball, cue ball first, `null`
+/// for a pocketed one; `"events"` are in time order with the documented shape; the
+/// pocketed balls are exactly those with a `pocket` event; every rest position is on the
+/// cloth.
+#[test]
+fn the_whole_table_is_reported_in_final_and_events() {
+    let v = json(&[
+        "--cue",
+        "0.635,0.635",
+        "--ball",
+        "1.905,0.5",
+        "--ball",
+        "1.2,1.0",
+        "--pocket",
+        "3",
+    ]);
+    let finals = v["final"].as_array().expect("final is an array");
+    assert_eq!(finals.len(), 3);
+    let events = v["events"].as_array().expect("events is an array");
+    let mut last = 0.0;
+    for event in events {
+        let time = event["time"].as_f64().unwrap();
+        assert!(time >= last, "{event}");
+        last = time;
+        let kind = event["kind"].as_str().unwrap();
+        assert!(
+            ["ball", "cushion", "pocket", "rest"].contains(&kind),
+            "{event}"
+        );
+        let balls = event["balls"].as_array().unwrap();
+        assert_eq!(balls.len(), if kind == "ball" { 2 } else { 1 }, "{event}");
+        assert_eq!(event.get("pocket").is_some(), kind == "pocket", "{event}");
+    }
+    for (i, end) in finals.iter().enumerate() {
+        let dropped = events
+            .iter()
+            .any(|e| e["kind"] == "pocket" && e["balls"][0].as_u64() == Some(i as u64));
+        assert_eq!(end.is_null(), dropped, "ball {i}: {end}");
+        if let Some(xy) = end.as_array() {
+            let (x, y) = (xy[0].as_f64().unwrap(), xy[1].as_f64().unwrap());
+            assert!(
+                x > 0.0 && x < 2.54 && y > 0.0 && y < 1.27,
+                "ball {i} at {x}, {y}"
+            );
+        }
+    }
+    // The solved shot pockets ball 1 in the whole table too.
+    assert_eq!(v["target"]["pocketed"], true);
+    assert!(finals[1].is_null(), "{}", v["final"]);
+    assert!(
+        v["three_cushion"].is_null(),
+        "only on a carom table with three balls"
+    );
+}
+
+/// A three-cushion point found by scanning aims (3° steps at 5 m/s with running side
+/// and follow): two cushions, ball 1, a third cushion, ball 2. The check counts the
+/// cushions before the second ball; the same table two degrees off scores nothing.
+#[test]
+fn a_carom_shot_plays_end_to_end_with_the_three_cushion_check() {
+    let shot = |aim: &str| {
+        json(&[
+            "--table", "carom", "--cue", "0.7,0.4", "--ball", "1.4,0.9", "--ball", "2.2,1.1",
+            "--aim", aim, "--speed", "5", "--tip", "0.3,0.2",
+        ])
+    };
+    let v = shot("84");
+    assert_eq!(v["three_cushion"]["scored"], true, "{}", v["three_cushion"]);
+    assert_eq!(v["three_cushion"]["first"], 1);
+    assert_eq!(v["three_cushion"]["second"], 2);
+    assert!(v["three_cushion"]["cushions"].as_u64().unwrap() >= 3);
+    assert!(v["final"].as_array().unwrap().iter().all(|p| !p.is_null()));
+    let v = shot("86");
+    assert_eq!(
+        v["three_cushion"]["scored"], false,
+        "{}",
+        v["three_cushion"]
+    );
+    let output = run(&[
+        "--table", "carom", "--cue", "0.7,0.4", "--ball", "1.4,0.9", "--ball", "2.2,1.1", "--aim",
+        "84", "--speed", "5", "--tip", "0.3,0.2",
+    ]);
+    let text = stdout(&output);
+    assert!(
+        text.contains(
+            "three-cushion: scores (the cue ball touches ball 1, then ball 2 after 3 cushions)"
+        ),
+        "{text}"
+    );
+}

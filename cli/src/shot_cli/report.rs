@@ -13,6 +13,7 @@ use cuesight::Vec3;
 use serde::Serialize;
 
 use super::input::{pocket_name, Request};
+use super::table_report::{EventReport, TableOutcome, ThreeCushion};
 
 /// Serialize a path end by its name (`rest`, `pocket`, `cushion`).
 fn end_name<S: serde::Serializer>(end: &End, serializer: S) -> Result<S::Ok, S::Error> {
@@ -282,6 +283,16 @@ pub struct ShotReport {
     pub object_ball: Option<BallReport>,
     /// The chosen object ball and pocket, if a pocket was chosen.
     pub target: Option<TargetReport>,
+    /// Where every ball ends after the whole table is simulated ([`TableOutcome`]):
+    /// `[x, y]` (m) per ball in scene order, cue ball first; `null` if pocketed.
+    #[serde(rename = "final")]
+    pub final_positions: Vec<Option<[f32; 2]>>,
+    /// Every event of the whole table in time order.
+    pub events: Vec<EventReport>,
+    /// Time until the last ball stops or drops (s).
+    pub table_time: f32,
+    /// The three-cushion scoring check (a carom table with three balls).
+    pub three_cushion: Option<ThreeCushion>,
 }
 
 /// The report as one line of JSON (what `--json` prints).
@@ -311,7 +322,7 @@ fn cut_side(cut_deg: f32) -> &'static str {
 impl ShotReport {
     /// Present the core's `guidance` for `request`: the scene echo, the pocket names,
     /// and every number of the guidance.
-    pub fn new(request: &Request, guidance: &Guidance) -> Self {
+    pub fn new(request: &Request, guidance: &Guidance, whole: &TableOutcome) -> Self {
         let scene = &request.scene;
         let table = scene.table();
         let setup = &request.setup;
@@ -368,7 +379,67 @@ impl ShotReport {
                 pocketed: t.pocketed,
                 miss: t.miss,
             }),
+            final_positions: whole.final_positions.clone(),
+            events: whole.events.clone(),
+            table_time: whole.time,
+            three_cushion: whole.three_cushion.clone(),
         }
+    }
+
+    /// The whole-table lines: events by kind, where each ball ends, the three-cushion
+    /// check.
+    fn whole_table(&self) -> String {
+        let count = |kind: &str| self.events.iter().filter(|e| e.kind == kind).count();
+        let names = self.table_for_names();
+        let ends: Vec<String> = self
+            .final_positions
+            .iter()
+            .enumerate()
+            .map(|(i, end)| {
+                let name = if i == 0 {
+                    "cue ball".to_owned()
+                } else {
+                    format!("ball {i}")
+                };
+                match end {
+                    Some(p) => format!("{name} {}", Point(*p)),
+                    None => {
+                        let pocket = self
+                            .events
+                            .iter()
+                            .find(|e| e.kind == "pocket" && e.balls == [i])
+                            .and_then(|e| e.pocket);
+                        match pocket {
+                            Some(p) => format!("{name} in {}", names.phrase(p)),
+                            None => format!("{name} pocketed"),
+                        }
+                    }
+                }
+            })
+            .collect();
+        let mut text = format!(
+            "whole table: {}, {}, {} in {:.2} s; ends: {}",
+            plural(count("ball"), "collision"),
+            plural(count("cushion"), "cushion"),
+            plural(count("pocket"), "pocket"),
+            self.table_time,
+            ends.join(", ")
+        );
+        if let Some(check) = &self.three_cushion {
+            let detail = match (check.first, check.second) {
+                (Some(first), Some(second)) => format!(
+                    "the cue ball touches ball {first}, then ball {second} after {}",
+                    plural(check.cushions, "cushion")
+                ),
+                (Some(first), None) => format!("the cue ball touches ball {first} only"),
+                _ => "the cue ball touches neither object ball".to_owned(),
+            };
+            text.push_str(&format!(
+                "\nthree-cushion: {} ({detail})",
+                if check.scored { "scores" } else { "no point" }
+            ));
+        }
+        text
     }
 
     fn table_for_names(&self) -> TableNames<'_> {
@@ -389,7 +460,7 @@ impl ShotReport {
                 format!("{verb} {}", self.table_for_names().phrase(pocket))
             }
             End::Cushion => format!(
-                "reaches the cushion at {} (cushions not modelled)",
+                "reaches the cushion at {} (then: whole table)",
                 Point(ball.end_position)
             ),
         }
@@ -434,6 +505,11 @@ impl TableNames<'_> {
             None => format!("the {name} corner (pocket {index})"),
         }
     }
+}
+
+/// `1 cushion`, `3 cushions`.
+fn plural(count: usize, noun: &str) -> String {
+    format!("{count} {noun}{}", if count == 1 { "" } else { "s" })
 }
 
 /// The guidance, a few lines, no trailing newline.
@@ -551,6 +627,6 @@ impl fmt::Display for ShotReport {
                 names.phrase(target.pocket)
             )?;
         }
-        Ok(())
+        write!(f, "\n{}", self.whole_table())
     }
 }
