@@ -113,8 +113,21 @@ impl Boundary {
     /// The first time at or after `now` at which `track`'s centre crosses an edge line
     /// outwards, and the edge. `None` if it stops inside.
     pub fn exit(&self, track: &Track, now: f32) -> Option<(f32, Edge)> {
-        let (pieces, n) = track.pieces();
-        for piece in &pieces[..n] {
+        // Lines the box around the whole path stays inside of cannot be crossed.
+        let (low, high) = (track.bounds.min, track.bounds.max);
+        let mut reachable = [false; 8];
+        let mut any = false;
+        for (reach, line) in reachable.iter_mut().zip(&self.lines[..self.count]) {
+            let n = line.normal;
+            let farthest = n.x * if n.x > 0.0 { high.x } else { low.x }
+                + n.y * if n.y > 0.0 { high.y } else { low.y };
+            *reach = farthest >= line.offset;
+            any |= *reach;
+        }
+        if !any {
+            return None;
+        }
+        for piece in track.pieces() {
             if piece.to <= now || piece.to == f32::INFINITY {
                 continue; // past, or the rest at the end: no crossing
             }
@@ -123,6 +136,9 @@ impl Boundary {
             let span = piece.to - from;
             let mut best: Option<(f32, usize)> = None;
             for (index, line) in self.lines[..self.count].iter().enumerate() {
+                if !reachable[index] {
+                    continue;
+                }
                 let n = line.normal;
                 let c = [n.dot(p) - line.offset, n.dot(q), n.dot(s), 0.0, 0.0];
                 let value = |x: f32| n.dot(p + q * x + s * (x * x)) - line.offset;

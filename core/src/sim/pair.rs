@@ -45,9 +45,16 @@ pub(crate) fn contact_time(a: &Track, b: &Track, now: f32, reach: f32) -> Option
     if end <= now {
         return None; // both at rest
     }
-    let (pieces_a, n_a) = a.pieces();
-    let (pieces_b, n_b) = b.pieces();
-    let (pieces_a, pieces_b) = (&pieces_a[..n_a], &pieces_b[..n_b]);
+    // The boxes around the two whole paths, one grown by the reach, must meet.
+    let (box_a, box_b) = (&a.bounds, &b.bounds);
+    if box_a.min.x > box_b.max.x + reach
+        || box_b.min.x > box_a.max.x + reach
+        || box_a.min.y > box_b.max.y + reach
+        || box_b.min.y > box_a.max.y + reach
+    {
+        return None;
+    }
+    let (pieces_a, pieces_b) = (a.pieces(), b.pieces());
     let mut from = now;
     while from < end {
         let (Some(pa), Some(pb)) = (piece_at(pieces_a, from), piece_at(pieces_b, from)) else {

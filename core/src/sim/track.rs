@@ -7,7 +7,7 @@
 //! (pooltool 0.6, `pooltool/physics/evolve`, after Leckie & Greenspan; `μ_sp` in the
 //! same units as there).
 
-use crate::travel::Motion;
+use crate::travel::{Bounds, Motion};
 use crate::vector::Vec3;
 
 /// A stretch of the path on which the centre is `p + q τ + s τ²`, `τ = t − from`, for
@@ -45,17 +45,27 @@ pub(crate) struct Track {
     spin_z: f32,
     /// Rate at which `|ω_z|` falls (rad/s²).
     spin_decay: f32,
+    /// The path's pieces ([`Track::pieces`]), computed once: every event time that
+    /// involves the ball reads them.
+    pieces: [Piece; 4],
+    piece_count: usize,
+    /// A box around the whole path (m; [`Motion::bounds`]).
+    pub bounds: Bounds,
 }
 
 impl Track {
     /// `motion` from simulation time `since`, its spin about `z` falling at `spin_decay`
     /// (rad/s²).
     pub fn new(motion: Motion, since: f32, spin_decay: f32) -> Self {
+        let (pieces, piece_count) = pieces_of(&motion, since);
         Self {
             spin_z: motion.initial_spin.z,
+            bounds: motion.bounds(),
             motion,
             since,
             spin_decay,
+            pieces,
+            piece_count,
         }
     }
 
@@ -90,38 +100,43 @@ impl Track {
     }
 
     /// The path as pieces in simulation time: the motion's phases of non-zero length,
-    /// then the rest from [`Track::stop`] on. Returns the pieces and how many.
-    pub fn pieces(&self) -> ([Piece; 4], usize) {
-        let rest = Piece {
-            from: self.stop(),
-            to: f32::INFINITY,
-            p: self.motion.rest(),
-            q: Vec3::ZERO,
-            s: Vec3::ZERO,
-        };
-        let mut pieces = [rest; 4];
-        let mut n = 0;
-        for (offset, span, p, q, s) in self.motion.phases() {
-            if span > 0.0 {
-                let from = self.since + offset;
-                pieces[n] = Piece {
-                    from,
-                    to: from + span,
-                    p: self.motion.start + p,
-                    q,
-                    s,
-                };
-                n += 1;
-            }
-        }
-        pieces[n] = rest;
-        // Contiguous: each piece ends where the next starts (their separately rounded
-        // ends and starts differ by an ulp), the last moving one at the stop.
-        for k in 0..n {
-            pieces[k].to = pieces[k + 1].from;
-        }
-        (pieces, n + 1)
+    /// then the rest from [`Track::stop`] on.
+    pub fn pieces(&self) -> &[Piece] {
+        self.pieces.get(..self.piece_count).unwrap_or(&[])
     }
+}
+
+/// The pieces of `motion` started at `since`, and how many.
+fn pieces_of(motion: &Motion, since: f32) -> ([Piece; 4], usize) {
+    let rest = Piece {
+        from: since + motion.stop_time(),
+        to: f32::INFINITY,
+        p: motion.rest(),
+        q: Vec3::ZERO,
+        s: Vec3::ZERO,
+    };
+    let mut pieces = [rest; 4];
+    let mut n = 0;
+    for (offset, span, p, q, s) in motion.phases() {
+        if span > 0.0 {
+            let from = since + offset;
+            pieces[n] = Piece {
+                from,
+                to: from + span,
+                p: motion.start + p,
+                q,
+                s,
+            };
+            n += 1;
+        }
+    }
+    pieces[n] = rest;
+    // Contiguous: each piece ends where the next starts (their separately rounded ends
+    // and starts differ by an ulp), the last moving one at the stop.
+    for k in 0..n {
+        pieces[k].to = pieces[k + 1].from;
+    }
+    (pieces, n + 1)
 }
 
 /// The piece of `pieces` that holds time `t` (the last one from its start on).
