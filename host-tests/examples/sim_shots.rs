@@ -8,14 +8,17 @@
 //! null, ...], "events": [{"time", "kind", "balls"}], "error": null | "...", "seconds":
 //! host time per simulation}` (the mean of repeated runs, at least 20 ms of them).
 //!
-//! `cargo run --release -p cuesight-host --example sim_shots -- SHOTS.json > ours.json`
+//! `cargo run --release -p cuesight-host --example sim_shots -- SHOTS.json [MODEL] >
+//! ours.json`, MODEL a collision model's name (`kim-grip` by default; `ideal`, the
+//! frictionless one, to compare with pooltool's frictionless ball–ball collisions).
 
 use std::io::Write;
 use std::time::Instant;
 
+use cuesight::shot::ShotSetup;
 use cuesight::sim::{simulate, EventKind, Launch, Setup};
 use cuesight::table::{BallSet, Scene, Table};
-use cuesight::Vec3;
+use cuesight::{Model, Vec3};
 use serde::Deserialize;
 use serde_json::{json, Value};
 
@@ -30,7 +33,7 @@ struct Shot {
     spin: [f32; 3],
 }
 
-fn play(shot: &Shot) -> Result<Value, String> {
+fn play(shot: &Shot, model: Model) -> Result<Value, String> {
     let (table, balls, setup) = match shot.table.as_str() {
         "pool" => (Table::pool(), BallSet::POOL, Setup::POOL),
         "carom" => (
@@ -39,6 +42,13 @@ fn play(shot: &Shot) -> Result<Value, String> {
             Setup::carom().map_err(|e| e.to_string())?,
         ),
         other => return Err(format!("unknown table {other:?}")),
+    };
+    let setup = Setup {
+        shot: ShotSetup {
+            model,
+            ..setup.shot
+        },
+        ..setup
     };
     let first = shot.balls.first().ok_or("no balls")?;
     let mut scene = Scene::new(table, balls.radius, *first).map_err(|e| e.to_string())?;
@@ -98,6 +108,16 @@ fn main() -> std::process::ExitCode {
             eprintln!("error: {path}: {e}");
             return std::process::ExitCode::from(2);
         }
+    };
+    let model = match std::env::args().nth(2) {
+        None => Model::KimGrip,
+        Some(name) => match Model::from_name(&name) {
+            Some(model) => model,
+            None => {
+                eprintln!("error: unknown model {name:?}");
+                return std::process::ExitCode::from(2);
+            }
+        },
     };
     let shots: Vec<Shot> = match serde_json::from_str(&text) {
         Ok(shots) => shots,
