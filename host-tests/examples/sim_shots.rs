@@ -129,7 +129,7 @@ fn main() -> std::process::ExitCode {
     let results: Vec<Value> = shots
         .iter()
         .map(|shot| {
-            play(shot)
+            play(shot, model)
                 .unwrap_or_else(|e| json!({"final": [], "events": [], "error": e, "seconds": 0.0}))
         })
         .collect();
