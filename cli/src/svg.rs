@@ -1,8 +1,9 @@
 //! SVG drawing of a played shot (`cuesight shot --svg FILE`): the table (rails with
 //! their diamonds, cloth, pockets to scale with their target segments; `table`), every
 //! ball with its number, the ghost ball, the cue ball's path before and after the
-//! contact, the object ball's path, the chosen pocket, a key with a scale bar and the
-//! tip offset (`legend`), and the guidance as a caption.
+//! contact, the object ball's path, the chosen pocket, the whole table's paths and
+//! events (`whole`), a key with a scale bar and the tip offset (`legend`), and the
+//! guidance as a caption.
 //!
 //! Written as text (no drawing crate: a few dozen elements do not need one). The table
 //! is drawn with `x` to the right and `y` up, 1000 px along its length. Post-impact
@@ -21,6 +22,7 @@ use crate::shot_cli::{End, PathEnd, Played};
 
 mod legend;
 mod table;
+mod whole;
 
 use table::RAIL;
 
@@ -211,8 +213,16 @@ pub fn render(played: &Played) -> String {
     let chosen = report.target.as_ref().map(|t| t.pocket);
     table::pockets(&mut svg, &f, table, chosen);
 
-    // Paths.
+    // The whole table, under the guidance's paths.
     let shot = &played.shot;
+    let object = shot
+        .contact
+        .as_ref()
+        .map(|c| c.object_ball)
+        .or(report.target.as_ref().map(|t| t.object));
+    whole::draw(&mut svg, &f, &played.table, object);
+
+    // Paths.
     match &shot.contact {
         Some(contact) => {
             let before = PathEnd {
@@ -285,11 +295,6 @@ pub fn render(played: &Played) -> String {
     }
 
     // Balls.
-    let object = shot
-        .contact
-        .as_ref()
-        .map(|c| c.object_ball)
-        .or(report.target.as_ref().map(|t| t.object));
     for (i, b) in scene.balls().iter().enumerate() {
         let (class, fill) = match i {
             0 => ("ball cue", "#fbfbf4"),

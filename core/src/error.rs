@@ -147,9 +147,7 @@ impl Field {
             Field::CueTableFriction => "[0, 1]",
             Field::ClothFriction => "[0.001, 1]",
             Field::RollingResistance => "[0.001, 0.5]",
-            Field::Position => {
-                "the playing surface: [R, length - R] x [R, width - R] m (in a table simulation, short of the corner pockets' mouth lines)"
-            }
+            Field::Position => "the playing surface: [R, length - R] x [R, width - R] m",
             Field::Table => {
                 "length (0, 10] m, width (0, length], corner mouth [0, width/2], side mouth [0, length/2]"
             }

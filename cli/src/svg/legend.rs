@@ -6,7 +6,7 @@ use std::fmt::Write;
 use super::{escape, Frame};
 
 /// Height of the key row (px).
-pub const HEIGHT: f32 = 74.0;
+pub const HEIGHT: f32 = 92.0;
 
 /// One entry of the key: the mark's SVG (drawn in a 28 × 14 px box whose top-left
 /// corner is `(x, y)`) and its label.
@@ -24,7 +24,7 @@ fn line(colour: &'static str, dash: &'static str) -> impl Fn(f32, f32) -> String
     }
 }
 
-const ENTRIES: [Entry; 8] = [
+const ENTRIES: [Entry; 11] = [
     (
         |x, y| line("#ffffff", "none")(x, y),
         "cue ball to the contact",
@@ -76,7 +76,36 @@ const ENTRIES: [Entry; 8] = [
                 y + 2.0
             )
         },
-        "reaches a cushion (not modelled further)",
+        "guidance path reaches a cushion",
+    ),
+    (
+        |x, y| line("#ff8a80", "none")(x, y).replace("2.5", "1.5"),
+        "whole table: every ball's path",
+    ),
+    (
+        |x, y| {
+            format!(
+                r##"<circle cx="{:.1}" cy="{:.1}" r="4" fill="{}" stroke="#222" stroke-width="0.8"/><rect x="{:.1}" y="{:.1}" width="7" height="7" fill="{}" stroke="#222" stroke-width="0.8"/>"##,
+                x + 7.0,
+                y + 7.0,
+                super::whole::COLLISION,
+                x + 17.5,
+                y + 3.5,
+                super::whole::CUSHION
+            )
+        },
+        "collision, cushion hit",
+    ),
+    (
+        |x, y| {
+            format!(
+                r##"<circle cx="{:.1}" cy="{:.1}" r="5" fill="none" stroke="{}" stroke-width="2.5"/>"##,
+                x + 14.0,
+                y + 7.0,
+                super::whole::DROP
+            )
+        },
+        "drops into a pocket",
     ),
 ];
 
@@ -92,7 +121,7 @@ pub fn key(svg: &mut String, f: &Frame, top: f32, width_px: f32, tip: [f32; 2]) 
         width_px - 20.0 - HEIGHT,
         HEIGHT - 8.0
     );
-    let columns = 3;
+    let columns = 4;
     let column_px = (width_px - 40.0 - HEIGHT) / columns as f32;
     for (i, (mark, label)) in ENTRIES.iter().enumerate() {
         let (row, column) = (i / columns, i % columns);
@@ -109,9 +138,13 @@ pub fn key(svg: &mut String, f: &Frame, top: f32, width_px: f32, tip: [f32; 2]) 
             escape(label)
         );
     }
-    // Scale bar: the last cell of the grid.
+    // Scale bar: the cell after the entries.
     let bar_m = 0.5;
-    let (x, y) = (20.0 + column_px * 2.0, top + 6.0 + 18.0 * 2.0);
+    let cell = ENTRIES.len();
+    let (x, y) = (
+        20.0 + column_px * (cell % columns) as f32,
+        top + 6.0 + 18.0 * (cell / columns) as f32,
+    );
     let _ = writeln!(
         svg,
         r##"<g id="scale-bar"><path d="M{:.1},{:.1} L{:.1},{:.1} M{:.1},{:.1} L{:.1},{:.1} M{:.1},{:.1} L{:.1},{:.1}" stroke="#f0f0f0" stroke-width="2"/><text x="{:.1}" y="{:.1}" fill="#f0f0f0">{} m</text></g>"##,

@@ -103,13 +103,6 @@ impl Boundary {
         }
     }
 
-    /// `true` when a centre at `p` is inside every edge line (or on one).
-    pub fn contains(&self, p: Vec3) -> bool {
-        self.lines[..self.count]
-            .iter()
-            .all(|line| line.normal.dot(p) <= line.offset)
-    }
-
     /// The first time at or after `now` at which `track`'s centre crosses an edge line
     /// outwards, and the edge. `None` if it stops inside.
     pub fn exit(&self, track: &Track, now: f32) -> Option<(f32, Edge)> {

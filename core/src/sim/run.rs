@@ -111,11 +111,14 @@ pub fn play(
 /// Simulate `scene`'s balls, at rest but for `launches`, until every ball rests or
 /// drops. `sink` sees every event as it happens, with the paths from it on.
 ///
+/// The scene keeps every ball on the cloth and no two overlapping. A ball may rest past
+/// a corner pocket's mouth line, hanging in the jaws: it stays until something moves
+/// it, and drops at once if that is outwards.
+///
 /// Errors: the setup's ball radius is not the scene's ([`Field::SetupRadius`]), its
 /// cushion or spin decay is out of range ([`Field::Cushion`], [`Field::SpinDecay`]), a
 /// launch names no ball ([`Field::BallIndex`]) or has a velocity or spin out of range
-/// ([`Field::Velocity`], [`Field::Spin`]), a ball lies in a pocket's mouth
-/// ([`Field::Position`]; the scene already keeps balls on the cloth and apart), the
+/// ([`Field::Velocity`], [`Field::Spin`]), the
 /// `Auto` tolerance is out of range ([`Field::Tolerance`]), a collision's input is out
 /// of the models' range, or the shot has not ended after `setup.max_events` events or
 /// [`MAX_TIME`] ([`Error::Unfinished`]).
@@ -139,12 +142,6 @@ pub fn simulate(
     let cloth = &setup.shot.cloth;
     let mut balls: heapless::Vec<Ball, MAX_BALLS> = heapless::Vec::new();
     for &position in scene.balls() {
-        if !boundary.contains(position) {
-            return Err(Error::OutOfRange {
-                field: Field::Position,
-                value: position.x,
-            });
-        }
         let motion = Motion::new(position, Vec3::ZERO, Vec3::ZERO, radius, cloth)?;
         let ball = Ball {
             track: Track::new(motion, 0.0, setup.spin_decay),

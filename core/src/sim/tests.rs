@@ -183,13 +183,6 @@ fn every_bad_input_is_a_typed_error_naming_it() {
         field(simulate(&scene, &launch(1, 2e3), &Setup::POOL, |_, _| {})),
         Some(crate::Field::Velocity)
     );
-    // A ball in a corner pocket's mouth: on the cloth, but past the mouth line.
-    let mut corner = Scene::new(Table::pool(), R, [0.635, 0.635]).unwrap();
-    corner.add_ball([R * 1.05, R * 1.05]).unwrap();
-    assert_eq!(
-        field(play(&corner, &stroke, &Setup::POOL, |_, _| {})),
-        Some(crate::Field::Position)
-    );
     // Capacity and overlap are the scene's: it never holds more than 16 balls or two
     // overlapping ones (`Scene::add_ball`).
 }
@@ -215,4 +208,29 @@ fn a_three_cushion_carom_shot_plays_to_the_end() {
         "{cushions} cushions, {balls} collisions"
     );
     assert!(end.positions().iter().all(Option::is_some));
+}
+
+/// A ball resting past a corner's mouth line (hanging in the jaws; the scene accepts it:
+/// it is on the cloth) stays until it is hit, then drops at once if pushed outwards.
+#[test]
+fn a_ball_hanging_in_the_jaws_drops_when_hit_towards_the_pocket() {
+    let mut scene = Scene::new(Table::pool(), R, [0.4, 0.4]).unwrap();
+    scene.add_ball([0.06, 0.06]).unwrap(); // x + y = 0.12, the mouth line's 0.163
+    let stroke = Stroke::new(2.0, TipOffset::CENTRE, [-1.0, -1.0]).unwrap();
+    let mut kinds = [None; 3];
+    let mut n = 0;
+    let end = play(&scene, &stroke, &Setup::POOL, |event, _| {
+        if n < kinds.len() {
+            kinds[n] = Some((event.kind, event.ball));
+        }
+        n += 1;
+    })
+    .unwrap();
+    assert_eq!(kinds[0], Some((EventKind::Ball, 0)), "{kinds:?}");
+    assert_eq!(kinds[1], Some((EventKind::Pocket(0), 1)), "{kinds:?}");
+    assert_eq!(end.position(1), None);
+    // Left alone, it stays.
+    let away = Stroke::new(2.0, TipOffset::CENTRE, [1.0, 0.2]).unwrap();
+    let end = play(&scene, &away, &Setup::POOL, |_, _| {}).unwrap();
+    assert_eq!(end.position(1), Some(Vec3::new(0.06, 0.06, 0.0)));
 }
