@@ -1,6 +1,13 @@
 """Run shots.json through pooltool 0.6 with Han 2005 cushions; write cuesight's result format.
 
-    python pooltool_side.py SHOTS.json OUT.json
+    python pooltool_side.py SHOTS.json OUT.json [--ball-ball default|frictionless] [--e-b E]
+
+--ball-ball default (the default): pooltool 0.6's own ball-ball model, frictional_inelastic
+with Alciatore's friction, e_b 0.95. --ball-ball frictionless: the same FrictionalInelastic
+resolver with AlciatoreBallBallFriction(a=0, b=0), so u_b = 0: a purely normal impulse
+with Newton restitution e_b and both spins unchanged; e_b is 1 by default in this mode,
+as in cuesight's `ideal` model (see README.md, "The two modes"). --e-b sets every ball's
+e_b in either mode.
 
 OUT.json: one result per shot, in order: {"final": [[x, y] | null (pocketed), ...],
 "events": [{"time", "kind": "ball"|"cushion"|"pocket"|"rest", "balls": [i] | [i, j]}],
@@ -17,6 +24,7 @@ and back by its inverse:
 
 from __future__ import annotations
 
+import argparse
 import json
 import os
 import statistics
@@ -24,17 +32,38 @@ import sys
 import time
 from pathlib import Path
 
+
+def arguments() -> argparse.Namespace:
+    parser = argparse.ArgumentParser(usage=__doc__)
+    parser.add_argument("shots")
+    parser.add_argument("out")
+    parser.add_argument("--ball-ball", choices=("default", "frictionless"), default="default")
+    parser.add_argument("--e-b", type=float, default=None,
+                        help="every ball's e_b (default 0.95; 1 with --ball-ball frictionless)")
+    args = parser.parse_args()
+    if args.e_b is None:
+        args.e_b = 1.0 if args.ball_ball == "frictionless" else 0.95
+    return args
+
+
 # pooltool reads (and writes) ~/.config/pooltool at import time, and the default engine
 # comes from a resolver.yaml there. Point HOME at a private directory before the import
 # so no user configuration is read or changed; the engine below is built explicitly.
-OUT_DIR = Path(sys.argv[2] if len(sys.argv) > 2 else "out.json").resolve().parent
-os.environ["HOME"] = str(OUT_DIR / "home")
-(OUT_DIR / "home").mkdir(parents=True, exist_ok=True)
+# (A script importing this module, diagnose.py, sets HOME itself first.)
+if __name__ == "__main__":
+    ARGS = arguments()
+    OUT_DIR = Path(ARGS.out).resolve().parent
+    os.environ["HOME"] = str(OUT_DIR / "home")
+    (OUT_DIR / "home").mkdir(parents=True, exist_ok=True)
 
 import attrs  # noqa: E402
 import pooltool as pt  # noqa: E402
 from pooltool.objects.table.specs import BilliardTableSpecs, PocketTableSpecs  # noqa: E402
 from pooltool.physics.engine import PhysicsEngine  # noqa: E402
+from pooltool.physics.resolve.ball_ball.frictional_inelastic import (  # noqa: E402
+    FrictionalInelastic,
+)
+from pooltool.physics.resolve.ball_ball.friction import AlciatoreBallBallFriction  # noqa: E402
 from pooltool.physics.resolve.ball_cushion.han_2005 import (  # noqa: E402
     Han2005Circular,
     Han2005Linear,
@@ -72,20 +101,32 @@ KINDS = {
 }
 
 
-def han_engine() -> PhysicsEngine:
-    """pooltool 0.6's default resolver (not the YAML one) with Han 2005 cushions."""
-    resolver = attrs.evolve(default_resolver(),
-                            ball_linear_cushion=Han2005Linear(),
-                            ball_circular_cushion=Han2005Circular())
-    return PhysicsEngine(resolver=resolver)
+def han_engine(ball_ball: str = "default") -> PhysicsEngine:
+    """pooltool 0.6's default resolver (not the YAML one) with Han 2005 cushions.
+
+    ball_ball "frictionless": FrictionalInelastic with Alciatore's u_b = a + b exp(-c v)
+    at a = b = 0. With u_b = 0 its slip branch adds no tangential impulse (and, the slip
+    being unchanged, is always kept; the no-slip branch runs only when the contact slip
+    is already below 1e-14 m/s, where it changes nothing), so the collision is the
+    normal-only v_n' = ((1 -+ e_b) v1n + (1 +- e_b) v2n) / 2, spins untouched, v_z 0.
+    pooltool's FrictionlessElastic would do for e_b = 1 but has no e_b; this one keeps
+    the default mode's code path (make_kiss, the continually-touching rule) and takes any
+    e_b.
+    """
+    changes = dict(ball_linear_cushion=Han2005Linear(), ball_circular_cushion=Han2005Circular())
+    if ball_ball == "frictionless":
+        changes["ball_ball"] = FrictionalInelastic(
+            friction=AlciatoreBallBallFriction(a=0.0, b=0.0))
+    return PhysicsEngine(resolver=attrs.evolve(default_resolver(), **changes))
 
 
-def build(shot: dict) -> pt.System:
+def build(shot: dict, e_b: float = 0.95) -> pt.System:
     W = TABLES[shot["table"]]["width"]
     table = pt.Table.from_table_specs(SPECS[shot["table"]])
     balls = {}
     for i, (x, y) in enumerate(shot["balls"]):
-        balls[str(i)] = pt.Ball.create(str(i), xy=(W - y, x), **BALL[shot["table"]])
+        balls[str(i)] = pt.Ball.create(str(i), xy=(W - y, x),
+                                       **dict(BALL[shot["table"]], e_b=e_b))
     vx, vy = shot["velocity"]
     wx, wy, wz = shot["spin"]
     cue_ball = balls["0"]
@@ -117,12 +158,15 @@ def result(shot: dict, system: pt.System, seconds: float) -> dict:
 
 
 def main() -> None:
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    shots = json.loads(Path(sys.argv[1]).read_text())
-    engine = han_engine()
+    shots = json.loads(Path(ARGS.shots).read_text())
+    engine = han_engine(ARGS.ball_ball)
     assert isinstance(engine.resolver.ball_linear_cushion, Han2005Linear)
     assert isinstance(engine.resolver.ball_circular_cushion, Han2005Circular)
+    assert isinstance(engine.resolver.ball_ball, FrictionalInelastic)
+    friction = engine.resolver.ball_ball.friction
+    assert isinstance(friction, AlciatoreBallBallFriction)
+    if ARGS.ball_ball == "frictionless":
+        assert friction.a == 0.0 and friction.b == 0.0
 
     # JIT warm-up, not timed: numba compiles each function on its first call, and some
     # only on rarer paths (with a single warm-up shot, two later shots took 0.4-0.5 s
@@ -130,14 +174,15 @@ def main() -> None:
     t0 = time.perf_counter()
     for shot in shots:
         try:
-            pt.simulate(build(shot), engine=engine, inplace=True, max_events=MAX_EVENTS)
+            pt.simulate(build(shot, ARGS.e_b), engine=engine, inplace=True,
+                        max_events=MAX_EVENTS)
         except Exception:  # noqa: BLE001 - recorded in the timed pass
             pass
     warmup = time.perf_counter() - t0
 
     results = []
     for shot in shots:
-        system = build(shot)
+        system = build(shot, ARGS.e_b)
         t0 = time.perf_counter()
         try:
             pt.simulate(system, engine=engine, inplace=True, max_events=MAX_EVENTS)
@@ -148,7 +193,7 @@ def main() -> None:
         results.append(result(shot, system, time.perf_counter() - t0))
         if results[-1]["pooltool_events"] > MAX_EVENTS:
             results[-1]["error"] = f"more than {MAX_EVENTS} pooltool events (stopped)"
-    Path(sys.argv[2]).write_text(json.dumps(results, indent=1))
+    Path(ARGS.out).write_text(json.dumps(results, indent=1))
 
     ok = [r for r in results if r["error"] is None]
     per_shot = [r["seconds"] for r in ok]
@@ -159,6 +204,10 @@ def main() -> None:
         pooltool=pt.__version__,
         resolver={k: type(getattr(engine.resolver, k)).__name__
                   for k in ("ball_ball", "ball_linear_cushion", "ball_circular_cushion")},
+        ball_ball=ARGS.ball_ball,
+        e_b=ARGS.e_b,
+        ball_ball_friction=dict(model=type(friction).__name__, a=friction.a, b=friction.b,
+                                c=friction.c),
         shots=len(results), errors=len(results) - len(ok), warmup_seconds=warmup,
         total_simulate_seconds=sum(per_shot),
         per_shot_seconds=dict(median=statistics.median(per_shot), mean=statistics.mean(per_shot)),
@@ -172,7 +221,7 @@ def main() -> None:
                     mean_collisions=statistics.mean(
                         sum(e["kind"] != "rest" for e in r["events"]) for r in ok)),
     )
-    timing = Path(sys.argv[2]).with_name(Path(sys.argv[2]).stem + "-timing.json")
+    timing = Path(ARGS.out).with_name(Path(ARGS.out).stem + "-timing.json")
     timing.write_text(json.dumps(summary, indent=1))
     print(json.dumps(summary, indent=1), file=sys.stderr)
 

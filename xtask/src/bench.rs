@@ -25,7 +25,7 @@
 //! Besides, the streaming stroke estimator (issue 15): instructions per sample on a
 //! stroke stream and its code size, in the shipped firmware's build configuration
 //! ([`stream`]; `target/bench/stream.json`, and `--stream-only` for just that); and the
-//! shot-guidance probe ([`guidance`], `--guidance-only` for just that).
+//! shot-guidance probe ([`guidance`], `--guidance-only` for just that and the whole-table probe, [`table`]).
 
 mod disasm;
 mod firmware;
@@ -35,6 +35,7 @@ mod plot;
 mod regression;
 mod report;
 mod stream;
+mod table;
 
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -120,7 +121,9 @@ pub fn run(args: &Args) -> Result {
 
     if args.guidance_only {
         section("shot-guidance probe under QEMU (-icount shift=0)");
-        return guidance::run(timeout);
+        guidance::run(timeout)?;
+        section("whole-table probe under QEMU (-icount shift=0)");
+        return table::run(timeout);
     }
 
     section("scene set");
@@ -137,6 +140,8 @@ pub fn run(args: &Args) -> Result {
 
     section("shot-guidance probe under QEMU (-icount shift=0)");
     guidance::run(timeout)?;
+    section("whole-table probe under QEMU (-icount shift=0)");
+    table::run(timeout)?;
 
     section("errors against the reference");
     let listings: Vec<PathBuf> = runs
@@ -245,7 +250,8 @@ pub fn check() -> Result {
     ])?;
     disasm::check_kimgrip()?;
     regression::check_kimgrip_count()?;
-    guidance::run(Duration::from_secs(120))
+    guidance::run(Duration::from_secs(120))?;
+    table::run(Duration::from_secs(120))
 }
 
 fn section(title: &str) {
