@@ -63,7 +63,7 @@ pub const SPIN_DECAY: f32 = 10.0 / 9.0 * GRAVITY;
 /// Events after which a simulation that has not ended stops with
 /// [`Error::Unfinished`](crate::Error::Unfinished), by default: a 9-ball break takes
 /// 90–180 (pooltool, issue 17).
-pub const MAX_EVENTS: u32 = 1000;
+pub const MAX_EVENTS: u16 = 1000;
 
 /// Simulated time (s) after which a simulation that has not ended stops with
 /// [`Error::Unfinished`](crate::Error::Unfinished): shots on real cloth end in under a
@@ -80,7 +80,7 @@ pub struct Setup {
     /// Rate (rad/s²) at which spinning friction slows the spin about `z`.
     pub spin_decay: f32,
     /// Event limit ([`MAX_EVENTS`] by default).
-    pub max_events: u32,
+    pub max_events: u16,
 }
 
 impl Setup {

@@ -628,7 +628,7 @@ fn core_errors() -> BoxedStrategy<CoreError> {
             .prop_map(|(field, value)| CoreError::OutOfRange { field, value }),
         Just(CoreError::NumericalFailure),
         Just(CoreError::ModelLeftOut),
-        (u32s(), f32s()).prop_map(|(events, time)| CoreError::Unfinished { events, time }),
+        (u16s(), f32s()).prop_map(|(events, time)| CoreError::Unfinished { events, time }),
     ]
     .boxed()
 }

@@ -265,6 +265,9 @@ mod tests {
             }
         }
         std::println!("worst {worst:.2e} of the speed; {grips} gripping, {slides} sliding");
+        cuesight_figures::record!("table-han-vector-agreement", "{worst:.1e}");
+        cuesight_figures::record!("table-han-impacts", "{}", grips + slides);
+        cuesight_figures::record!("table-han-gripping", "{grips}");
         assert!(grips > 50 && slides > 50, "{grips} {slides}");
     }
 

@@ -168,7 +168,7 @@ pub fn simulate(
     let reach = 2.0 * radius;
     let mut pair_times = [f32::INFINITY; PAIRS];
     let mut now = 0.0f32;
-    let mut events = 0u32;
+    let mut events = 0u16;
     let mut attempts = 0u32;
     loop {
         // Refresh every cached time that involves a ball whose path changed.
@@ -233,7 +233,10 @@ pub fn simulate(
         // Every candidate counts towards the limit, those found not to happen too:
         // each of them moves time on (`later`), but only by a little.
         attempts += 1;
-        if events >= setup.max_events || attempts > 4 * setup.max_events || time > MAX_TIME {
+        if events >= setup.max_events
+            || attempts > 4 * u32::from(setup.max_events)
+            || time > MAX_TIME
+        {
             return Err(Error::Unfinished { events, time: now });
         }
         now = if time > now { time } else { now };
@@ -341,7 +344,7 @@ pub fn simulate(
     Ok(Finish {
         rest,
         time: now,
-        events,
+        events: events.into(),
     })
 }
 
