@@ -9,7 +9,7 @@
 //! between its ends. The jaws' own shape (their rounded noses, the throat) is not
 //! modelled: a ball that reaches a mouth line drops.
 
-use super::roots::first_rise;
+use super::roots::first_rise_quadratic;
 use super::track::Track;
 use crate::table::Table;
 use crate::vector::Vec3;
@@ -133,9 +133,9 @@ impl Boundary {
                     continue;
                 }
                 let n = line.normal;
-                let c = [n.dot(p) - line.offset, n.dot(q), n.dot(s), 0.0, 0.0];
+                let c = [n.dot(p) - line.offset, n.dot(q), n.dot(s)];
                 let value = |x: f32| n.dot(p + q * x + s * (x * x)) - line.offset;
-                if let Some(sigma) = first_rise(&c, span, value) {
+                if let Some(sigma) = first_rise_quadratic(c, span, value) {
                     if best.is_none_or(|(b, _)| sigma < b) {
                         best = Some((sigma, index));
                     }

@@ -35,13 +35,20 @@ pub(crate) struct State {
 }
 
 /// First time at or after `now` at which the centres of `a` and `b` come within `reach`
-/// (m) while approaching, if they do before both stop.
-pub(crate) fn contact_time(a: &Track, b: &Track, now: f32, reach: f32) -> Option<f32> {
+/// (m) while approaching, if they do before both stop and before `horizon` (s).
+pub(crate) fn contact_time(
+    a: &Track,
+    b: &Track,
+    now: f32,
+    reach: f32,
+    horizon: f32,
+) -> Option<f32> {
     let end = if a.stop() > b.stop() {
         a.stop()
     } else {
         b.stop()
     };
+    let end = if horizon < end { horizon } else { end };
     if end <= now {
         return None; // both at rest
     }
@@ -93,10 +100,13 @@ pub(crate) fn contact_time(a: &Track, b: &Track, now: f32, reach: f32) -> Option
     None
 }
 
-/// `false` when the difference `dp + dq σ + ds σ²`, `σ ∈ [0, span]`, surely stays
-/// farther than `reach` from the origin: it lies in the box of its Bézier control points
-/// `dp`, `dp + dq span/2`, `dp + dq span + ds span²`, and that box, grown by `reach`,
-/// misses the origin.
+/// `false` when the difference `d(σ) = dp + dq σ + ds σ²`, `σ ∈ [0, span]`, surely
+/// stays farther than `reach` from the origin. It is the quadratic Bézier curve of the
+/// control points `B₀ = dp`, `B₁ = dp + dq span/2`, `B₂ = dp + dq span + ds span²`,
+/// so (1) it lies in their box, and (2) it is the chord from `B₀` to `B₂` plus
+/// `2t(1 − t) (B₁ − M)` with `M` the chord's midpoint, so within `|B₁ − M|/2` of the
+/// chord: farther than `reach` if the chord is farther than `reach + |B₁ − M|/2`. The
+/// box is the cheap test, the chord the tight one (a ball rolling past another).
 fn within_reach(dp: Vec3, dq: Vec3, ds: Vec3, span: f32, reach: f32) -> bool {
     let middle = dp + dq * (0.5 * span);
     let end = dp + dq * span + ds * (span * span);
@@ -105,7 +115,26 @@ fn within_reach(dp: Vec3, dq: Vec3, ds: Vec3, span: f32, reach: f32) -> bool {
     let low_y = min3(dp.y, middle.y, end.y);
     let high_y = -min3(-dp.y, -middle.y, -end.y);
     // NaN (an unbounded span) fails every comparison: no rejection.
-    !(low_x > reach || high_x < -reach || low_y > reach || high_y < -reach)
+    if low_x > reach || high_x < -reach || low_y > reach || high_y < -reach {
+        return false;
+    }
+    let chord = Vec3::new(end.x - dp.x, end.y - dp.y, 0.0);
+    let length_squared = chord.dot(chord);
+    let t = if length_squared > 0.0 {
+        // NaN stays NaN through `clamp`, and fails the comparison below: no rejection.
+        (-Vec3::new(dp.x, dp.y, 0.0).dot(chord) / length_squared).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let closest = Vec3::new(dp.x + chord.x * t, dp.y + chord.y * t, 0.0);
+    let bulge = Vec3::new(
+        middle.x - 0.5 * (dp.x + end.x),
+        middle.y - 0.5 * (dp.y + end.y),
+        0.0,
+    );
+    let margin = reach + 0.5 * bulge.length();
+    let far = closest.dot(closest) > margin * margin;
+    !far
 }
 
 fn min3(a: f32, b: f32, c: f32) -> f32 {

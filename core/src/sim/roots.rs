@@ -188,6 +188,46 @@ pub(crate) fn first_rise(
     None
 }
 
+/// [`first_rise`] for a polynomial of degree ≤ 2, `c[0] + c[1] σ + c[2] σ²` (a centre
+/// crossing a line): the root in closed form (stable, Numerical Recipes §5.6) where the
+/// polynomial increases, then moved down to the last float below zero, as `first_rise`
+/// returns it; `first_rise` itself where that takes more than a few steps (a root the
+/// formula rounds too far).
+pub(crate) fn first_rise_quadratic(
+    c: [f32; 3],
+    span: f32,
+    value: impl Fn(f32) -> f32,
+) -> Option<f32> {
+    if span < 0.0 || span.is_nan() {
+        return None;
+    }
+    let (c0, c1, c2) = (c[0], c[1], c[2]);
+    let rising_now = c1 > 0.0 || (c1 == 0.0 && c2 > 0.0);
+    if c0 >= 0.0 && rising_now {
+        return Some(0.0);
+    }
+    let mut roots = [f32::NAN; 2];
+    let n = quadratic_roots_in(c0, c1, c2, 0.0, span, &mut roots);
+    // The root at which it rises: where the derivative c1 + 2 c2 σ is not negative.
+    let root = roots
+        .into_iter()
+        .take(n)
+        .find(|&r| c1 + 2.0 * c2 * r >= 0.0)
+        // A root at the very end (the formula's interval is open).
+        .or_else(|| (c1 + 2.0 * c2 * span > 0.0 && value(span) >= 0.0).then_some(span));
+    let mut sigma = root?;
+    for _ in 0..4 {
+        if value(sigma) < 0.0 {
+            return Some(sigma);
+        }
+        if sigma <= 0.0 {
+            break;
+        }
+        sigma = f32::from_bits(sigma.to_bits() - 1);
+    }
+    first_rise(&[c0, c1, c2, 0.0, 0.0], span, value)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -246,6 +286,34 @@ mod tests {
         }
         let t = first_rise(&d, 3.0, shifted).unwrap();
         assert!((t - 1.0).abs() < 1e-5, "{t}");
+    }
+
+    /// The closed form agrees with the general solver on quadratics of every shape.
+    #[test]
+    fn the_quadratic_shortcut_agrees_with_the_general_solver() {
+        let mut checked = 0;
+        for c0 in [-2.0f32, -0.5, -1e-6, 0.0, 1e-6, 0.7] {
+            for c1 in [-3.0f32, -1.0, 0.0, 0.4, 2.5] {
+                for c2 in [-1.5f32, -0.2, 0.0, 0.3, 4.0] {
+                    for span in [0.5f32, 2.0, 10.0] {
+                        let c = [c0, c1, c2, 0.0, 0.0];
+                        let value = |x: f32| eval(&c, x);
+                        let general = first_rise(&c, span, value);
+                        let quick = first_rise_quadratic([c0, c1, c2], span, value);
+                        match (general, quick) {
+                            (None, None) => {}
+                            (Some(a), Some(b)) => assert!(
+                                (a - b).abs() <= 1e-5 * (1.0 + a.abs()),
+                                "{c:?} on {span}: {a} vs {b}"
+                            ),
+                            _ => panic!("{c:?} on {span}: {general:?} vs {quick:?}"),
+                        }
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(checked, 450);
     }
 
     #[test]

@@ -71,8 +71,9 @@ struct Ball {
     rest: f32,
     /// Next exit from the cloth (∞ when none).
     exit: (f32, Option<Edge>),
-    /// The ball it last collided with, and when (s).
-    last_contact: Option<(usize, f32)>,
+    /// Exits are searched from this time on (or now, if later): a moment after a
+    /// cushion contact found not to be one.
+    exit_from: f32,
     /// When it last hit a cushion (s).
     last_cushion: Option<f32>,
 }
@@ -148,7 +149,7 @@ pub fn simulate(
             pocketed: false,
             rest: f32::INFINITY,
             exit: (f32::INFINITY, None),
-            last_contact: None,
+            exit_from: 0.0,
             last_cushion: None,
         };
         // The scene holds at most MAX_BALLS.
@@ -167,11 +168,16 @@ pub fn simulate(
     }
     let reach = 2.0 * radius;
     let mut pair_times = [f32::INFINITY; PAIRS];
+    // When each pair last collided (s).
+    let mut pair_last = [f32::NEG_INFINITY; PAIRS];
     let mut now = 0.0f32;
     let mut events = 0u16;
     let mut attempts = 0u32;
     loop {
-        // Refresh every cached time that involves a ball whose path changed.
+        // Refresh every cached time that involves a ball whose path changed: first
+        // their stops and exits, then their pairs, each searched only until the first
+        // exit of either ball (there its path changes, and the pair is looked at
+        // again).
         for i in 0..balls.len() {
             if dirty & (1 << i) == 0 {
                 continue;
@@ -187,20 +193,25 @@ pub fn simulate(
                 } else {
                     f32::INFINITY
                 };
+                let from = if ball.exit_from > now {
+                    ball.exit_from
+                } else {
+                    now
+                };
                 ball.exit = boundary
-                    .exit(&ball.track, now)
+                    .exit(&ball.track, from)
                     .map_or((f32::INFINITY, None), |(t, edge)| (t, Some(edge)));
+            }
+        }
+        for i in 0..balls.len() {
+            if dirty & (1 << i) == 0 {
+                continue;
             }
             for j in 0..balls.len() {
                 if j == i || (dirty & (1 << j) != 0 && j < i) {
                     continue; // itself, or a pair already refreshed from j's side
                 }
-                let (a, b) = (&balls[i], &balls[j]);
-                pair_times[pair_index(i, j)] = if a.pocketed || b.pocketed {
-                    f32::INFINITY
-                } else {
-                    contact_time(&a.track, &b.track, now, reach).unwrap_or(f32::INFINITY)
-                };
+                pair_times[pair_index(i, j)] = pair_time(&balls[i], &balls[j], now, reach);
             }
         }
         dirty = 0;
@@ -253,9 +264,7 @@ pub fn simulate(
         let happened = match (kind, other) {
             (EventKind::Ball, Some(j)) => {
                 let (a, b) = (state(&balls[i]), state(&balls[j]));
-                let again = balls[i]
-                    .last_contact
-                    .is_some_and(|(k, t)| k == j && now - t < LOCK_TIME);
+                let again = now - pair_last[pair_index(i, j)] < LOCK_TIME;
                 let after = if again && closing_speed(&a, &b) < LOCK_SPEED {
                     Some(lock(&a, &b))
                 } else {
@@ -265,8 +274,7 @@ pub fn simulate(
                     Some((a, b)) => {
                         balls[i].track = restart(&a)?;
                         balls[j].track = restart(&b)?;
-                        balls[i].last_contact = Some((j, now));
-                        balls[j].last_contact = Some((i, now));
+                        pair_last[pair_index(i, j)] = now;
                         dirty |= (1 << i) | (1 << j);
                         true
                     }
@@ -275,9 +283,8 @@ pub fn simulate(
                         // rounding just after a collision, or a graze. Look again from a
                         // moment later (two balls pressed together by their
                         // decelerations then collide as soon as they approach).
-                        let (a, b) = (&balls[i].track, &balls[j].track);
                         pair_times[pair_index(i, j)] =
-                            contact_time(a, b, later(now), reach).unwrap_or(f32::INFINITY);
+                            pair_time(&balls[i], &balls[j], later(now), reach);
                         false
                     }
                 }
@@ -308,10 +315,10 @@ pub fn simulate(
                     true
                 } else {
                     // Not moving into the cushion at the line (within rounding): look
-                    // again from a moment later.
-                    balls[i].exit = boundary
-                        .exit(&balls[i].track, later(now))
-                        .map_or((f32::INFINITY, None), |(t, edge)| (t, Some(edge)));
+                    // again from a moment later (its pairs too: they were searched
+                    // only until this exit).
+                    balls[i].exit_from = later(now);
+                    dirty |= 1 << i;
                     false
                 }
             }
@@ -362,6 +369,20 @@ fn along_cushion(velocity: Vec3, spin: Vec3, normal: Vec3) -> (Vec3, Vec3) {
         velocity - normal * velocity.dot(normal),
         spin - along * spin.dot(along),
     )
+}
+
+/// The next contact of `a` and `b` from `from` on, searched until the first exit of
+/// either from the cloth (∞ if none before, or either has dropped).
+fn pair_time(a: &Ball, b: &Ball, from: f32, reach: f32) -> f32 {
+    if a.pocketed || b.pocketed {
+        return f32::INFINITY;
+    }
+    let horizon = if a.exit.0 < b.exit.0 {
+        a.exit.0
+    } else {
+        b.exit.0
+    };
+    contact_time(&a.track, &b.track, from, reach, horizon).unwrap_or(f32::INFINITY)
 }
 
 /// A moment after `t` (s): 1 µs, or a millionth of `t` where that is more (its f32
