@@ -42,6 +42,7 @@ mod cushion;
 mod pair;
 mod roots;
 mod run;
+mod schedule;
 mod track;
 
 pub use cushion::Cushion;

@@ -3,6 +3,7 @@
 
 use super::boundary::{Boundary, Edge};
 use super::pair::{closing_speed, contact_time, lock, resolve, State};
+use super::schedule::Schedule;
 use super::track::Track;
 use super::{Event, EventKind, Setup, MAX_TIME};
 use crate::error::{Error, Field, Result};
@@ -11,9 +12,6 @@ use crate::strike::strike;
 use crate::table::{Scene, MAX_BALLS};
 use crate::travel::Motion;
 use crate::vector::Vec3;
-
-/// Pairs of distinct balls.
-const PAIRS: usize = MAX_BALLS * (MAX_BALLS - 1) / 2;
 
 /// A ball set moving: velocity (m/s, table frame; `z > 0` a hop) and spin (rad/s).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -167,9 +165,7 @@ pub fn simulate(
         dirty |= 1 << launch.ball;
     }
     let reach = 2.0 * radius;
-    let mut pair_times = [f32::INFINITY; PAIRS];
-    // When each pair last collided (s).
-    let mut pair_last = [f32::NEG_INFINITY; PAIRS];
+    let mut schedule = Schedule::new();
     let mut now = 0.0f32;
     let mut events = 0u16;
     let mut attempts = 0u32;
@@ -211,7 +207,7 @@ pub fn simulate(
                 if j == i || (dirty & (1 << j) != 0 && j < i) {
                     continue; // itself, or a pair already refreshed from j's side
                 }
-                pair_times[pair_index(i, j)] = pair_time(&balls[i], &balls[j], now, reach);
+                schedule.set(i, j, pair_time(&balls[i], &balls[j], now, reach));
             }
         }
         dirty = 0;
@@ -223,10 +219,8 @@ pub fn simulate(
                 next = Some((time, kind, ball, other));
             }
         };
-        for i in 0..balls.len() {
-            for j in i + 1..balls.len() {
-                consider(pair_times[pair_index(i, j)], EventKind::Ball, i, Some(j));
-            }
+        if let Some((time, i, j)) = schedule.earliest(balls.len()) {
+            consider(time, EventKind::Ball, i, Some(j));
         }
         for (i, ball) in balls.iter().enumerate() {
             if let (time, Some(edge)) = ball.exit {
@@ -264,7 +258,7 @@ pub fn simulate(
         let happened = match (kind, other) {
             (EventKind::Ball, Some(j)) => {
                 let (a, b) = (state(&balls[i]), state(&balls[j]));
-                let again = now - pair_last[pair_index(i, j)] < LOCK_TIME;
+                let again = now - schedule.last_collision(i, j) < LOCK_TIME;
                 let after = if again && closing_speed(&a, &b) < LOCK_SPEED {
                     Some(lock(&a, &b))
                 } else {
@@ -274,7 +268,7 @@ pub fn simulate(
                     Some((a, b)) => {
                         balls[i].track = restart(&a)?;
                         balls[j].track = restart(&b)?;
-                        pair_last[pair_index(i, j)] = now;
+                        schedule.collided(i, j, now);
                         dirty |= (1 << i) | (1 << j);
                         true
                     }
@@ -283,8 +277,8 @@ pub fn simulate(
                         // rounding just after a collision, or a graze. Look again from a
                         // moment later (two balls pressed together by their
                         // decelerations then collide as soon as they approach).
-                        pair_times[pair_index(i, j)] =
-                            pair_time(&balls[i], &balls[j], later(now), reach);
+                        let time = pair_time(&balls[i], &balls[j], later(now), reach);
+                        schedule.set(i, j, time);
                         false
                     }
                 }
@@ -391,10 +385,4 @@ fn pair_time(a: &Ball, b: &Ball, from: f32, reach: f32) -> f32 {
 fn later(t: f32) -> f32 {
     let step = 1e-6 * t;
     t + if step > 1e-6 { step } else { 1e-6 }
-}
-
-/// Index of the pair `{i, j}`, `i ≠ j`, in `0..PAIRS`.
-fn pair_index(i: usize, j: usize) -> usize {
-    let (low, high) = if i < j { (i, j) } else { (j, i) };
-    high * (high - 1) / 2 + low
 }
