@@ -43,6 +43,7 @@ mod pair;
 mod roots;
 mod run;
 mod schedule;
+pub mod shots;
 mod track;
 
 pub use cushion::Cushion;

@@ -5,8 +5,12 @@
 //! pointer, empty call subtracted, [`cuesight_bench::count`]), the scene's construction
 //! subtracted, f32 and `KimGrip`, and each shot's event counts.
 //!
+//! The shots are `cuesight::sim::shots`; each one's result digest
+//! (`cuesight::sim::shots::digest`, to the bit) is printed for the host to compare.
+//!
 //! Run: `cd bench-firmware && cargo run --release --bin table-probe` (prints `table
-//! <shot> <instructions> <events> <collisions> <cushions> <pockets>` lines and exits 0).
+//! <shot> <instructions> <events> <collisions> <cushions> <pockets>` and `table-digest
+//! <shot> <hex>` lines and exits 0).
 #![no_std]
 #![no_main]
 #![deny(missing_docs)]
@@ -14,80 +18,16 @@
 use core::fmt::Write as _;
 use core::hint::black_box;
 
-use cuesight::shot::Stroke;
-use cuesight::sim::{play, EventKind, Event, Setup};
-use cuesight::strike::TipOffset;
-use cuesight::table::{BallSet, Scene, Table};
+use cuesight::sim::shots::{digest, ALL};
+use cuesight::sim::{play, Event, EventKind};
 use cuesight::{Error, Impact, Model, Outcome, Params, Result};
 use cuesight_bench::count;
 use cuesight_bench::exit;
 use cuesight_bench::out::Out;
 use cuesight_bench::timer::INSTRUCTIONS_PER_TICK;
 
-/// One shot: its scene, stroke and setup.
-struct Shot {
-    scene: Scene,
-    stroke: Stroke,
-    setup: Setup,
-}
-
-/// The three-cushion point of `cli/tests/shot_cli.rs` (two cushions, ball 1, a third
-/// cushion, ball 2).
-fn carom() -> Result<Shot> {
-    let r = BallSet::CAROM.radius;
-    let mut scene = Scene::new(Table::carom(), r, [0.7, 0.4])?;
-    scene.add_ball([1.4, 0.9])?;
-    scene.add_ball([2.2, 1.1])?;
-    let aim = 84.0f32.to_radians();
-    Ok(Shot {
-        scene,
-        stroke: Stroke::at_angle(5.0, TipOffset::from_radius_fraction(0.3, 0.2, r)?, aim)?,
-        setup: Setup::carom()?,
-    })
-}
-
-/// Sixteen balls: the cue ball and fifteen spread over a pool table, a firm stroke.
-fn sixteen() -> Result<Shot> {
-    let r = BallSet::POOL.radius;
-    let mut scene = Scene::new(Table::pool(), r, [0.5, 0.4])?;
-    for i in 0..15 {
-        let (row, column) = ((i / 5) as f32, (i % 5) as f32);
-        scene.add_ball([0.9 + 0.3 * column, 0.3 + 0.3 * row + 0.05 * column])?;
-    }
-    Ok(Shot {
-        scene,
-        stroke: Stroke::at_angle(6.0, TipOffset::from_radius_fraction(0.0, 0.2, r)?, 0.35)?,
-        setup: Setup::POOL,
-    })
-}
-
-/// A 9-ball break: the diamond rack (rows of 1, 2, 3, 2, 1, 0.1 mm apart) on the foot
-/// spot, the cue ball on the head string, 8 m/s into the head ball.
-fn break_shot() -> Result<Shot> {
-    let r = BallSet::POOL.radius;
-    let (foot, middle) = (1.905, 0.635);
-    let mut scene = Scene::new(Table::pool(), r, [0.635, 0.6])?;
-    let pitch = 2.0 * r + 1e-4;
-    let row_step = pitch * 0.866_025_4;
-    for (row, count) in [1, 2, 3, 2, 1].into_iter().enumerate() {
-        for k in 0..count {
-            let y = middle + pitch * (k as f32 - (count - 1) as f32 / 2.0);
-            scene.add_ball([foot + row_step * row as f32, y])?;
-        }
-    }
-    let aim = [foot - 0.635, middle - 0.6];
-    Ok(Shot {
-        scene,
-        stroke: Stroke::new(8.0, TipOffset::CENTRE, aim)?,
-        setup: Setup::POOL,
-    })
-}
-
-const SHOTS: [(&str, fn() -> Result<Shot>); 3] =
-    [("three-cushion", carom), ("sixteen-balls", sixteen), ("nine-ball-break", break_shot)];
-
-/// The shot of index `model`'s tolerance field… no: of the `Impact`'s speed (the count
-/// API passes a `Params`, an `Impact` and a `Model`; the impact's `v_x` selects it).
+/// The shot of the count API's `Impact` (its `v_x` selects it: the API passes a
+/// `Params`, an `Impact` and a `Model`).
 fn which(impact: &Impact) -> usize {
     impact.velocity().x as usize
 }
@@ -95,7 +35,7 @@ fn which(impact: &Impact) -> usize {
 /// Construction of the selected shot only (subtracted from the others).
 #[inline(never)]
 fn build(_: &Params, impact: &Impact, _: Model) -> Result<Outcome> {
-    let shot = (SHOTS[which(impact) % SHOTS.len()].1)()?;
+    let shot = (ALL[which(impact) % ALL.len()].1)()?;
     black_box(&shot.scene);
     Err(Error::NumericalFailure)
 }
@@ -103,10 +43,15 @@ fn build(_: &Params, impact: &Impact, _: Model) -> Result<Outcome> {
 /// Construction and the whole-table simulation of the selected shot.
 #[inline(never)]
 fn simulate(_: &Params, impact: &Impact, _: Model) -> Result<Outcome> {
-    let shot = (SHOTS[which(impact) % SHOTS.len()].1)()?;
-    let finish = play(&shot.scene, &shot.stroke, &shot.setup, |event: &Event, _| {
-        black_box(event);
-    })?;
+    let shot = (ALL[which(impact) % ALL.len()].1)()?;
+    let finish = play(
+        &shot.scene,
+        &shot.stroke,
+        &shot.setup,
+        |event: &Event, _| {
+            black_box(event);
+        },
+    )?;
     black_box(&finish);
     Err(Error::NumericalFailure)
 }
@@ -118,7 +63,7 @@ fn main() -> ! {
     let mut out = Out::stdout();
     let params = Params::POOL;
     let mut ok = true;
-    for (index, (name, make)) in SHOTS.iter().enumerate() {
+    for (index, (name, make)) in ALL.iter().enumerate() {
         let Ok(impact) = Impact::from_velocity([index as f32 + 0.5, 0.0], [0.0; 3]) else {
             exit::exit(false)
         };
@@ -147,6 +92,12 @@ fn main() -> ! {
             "table {name} {instructions} {events} {balls} {cushions} {pockets} (scene construction {} excluded)",
             per(base)
         );
+        match make().and_then(|shot| digest(&shot)) {
+            Ok(hash) => {
+                let _ = writeln!(out, "table-digest {name} {hash:08x}");
+            }
+            Err(_) => ok = false,
+        }
     }
     out.flush();
     exit::exit(ok)

@@ -54,6 +54,41 @@ pub fn run(timeout: Duration) -> Result {
         cuesight_figures::record_with(&key, &value, COMMAND)
             .map_err(|e| Failure::new(format!("recording figure {key}: {e}")))
     };
+    // Host and device bit-identical: the device's digest of each shot's result against
+    // the host's, from the same core (`cuesight::sim::shots`).
+    let mut identical = 0;
+    for line in text.lines() {
+        let Some(rest) = line.strip_prefix("table-digest ") else {
+            continue;
+        };
+        let mut words = rest.split_whitespace();
+        let (Some(name), Some(device)) = (words.next(), words.next()) else {
+            continue;
+        };
+        let Some((_, make)) = cuesight::sim::shots::ALL.iter().find(|(n, _)| *n == name) else {
+            return Err(Failure::new(format!("{PROBE}: unknown shot {name}")));
+        };
+        let host = make()
+            .and_then(|shot| cuesight::sim::shots::digest(&shot))
+            .map_err(|e| Failure::new(format!("{PROBE}: {name} on the host: {e}")))?;
+        if format!("{host:08x}") != device {
+            return Err(Failure::new(format!(
+                "{PROBE}: {name}: the device's result digest {device} is not the host's {host:08x}: host and device differ"
+            )));
+        }
+        println!("xtask bench: table {name}: host and device bit-identical (digest {device})");
+        identical += 1;
+    }
+    if identical != probes.len() {
+        return Err(Failure::new(format!(
+            "{PROBE}: {identical} digests for {} shots",
+            probes.len()
+        )));
+    }
+    record(
+        "bench-table-bit-identical".into(),
+        format!("{identical} of {}", probes.len()),
+    )?;
     for p in &probes {
         let per_event = p.instructions / p.events.max(1);
         println!(
