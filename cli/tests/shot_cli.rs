@@ -766,3 +766,39 @@ fn a_carom_shot_plays_end_to_end_with_the_three_cushion_check() {
         "{text}"
     );
 }
+
+/// Issue 17: the inverse aim's verdict on the whole table. The solved aim pockets ball 1
+/// on an open table; with ball 2 on its line to the pocket, the guidance's first path
+/// still reaches the pocket, but the whole table names ball 2 in the way.
+#[test]
+fn the_whole_table_names_a_ball_in_the_way_of_the_solved_shot() {
+    let open = json(&[
+        "--cue",
+        "0.635,0.635",
+        "--ball",
+        "1.905,0.5",
+        "--pocket",
+        "3",
+    ]);
+    assert_eq!(
+        open["target_whole_table"]["pocketed"], true,
+        "{}",
+        open["target_whole_table"]
+    );
+    assert!(open["target_whole_table"]["in_the_way"].is_null());
+    let blocked = json(&[
+        "--cue",
+        "0.635,0.635",
+        "--ball",
+        "1.905,0.5",
+        "--ball",
+        "2.2,0.85",
+        "--pocket",
+        "3",
+    ]);
+    assert_eq!(blocked["target"]["pocketed"], true, "the first path alone");
+    let whole = &blocked["target_whole_table"];
+    assert_eq!(whole["pocketed"], false, "{whole}");
+    assert_eq!(whole["first"], "ball", "{whole}");
+    assert_eq!(whole["in_the_way"], 2, "{whole}");
+}

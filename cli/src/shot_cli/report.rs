@@ -13,7 +13,7 @@ use cuesight::Vec3;
 use serde::Serialize;
 
 use super::input::{pocket_name, Request};
-use super::table_report::{EventReport, TableOutcome, ThreeCushion};
+use super::table_report::{EventReport, TableOutcome, ThreeCushion, WholeTarget};
 
 /// Serialize a path end by its name (`rest`, `pocket`, `cushion`).
 fn end_name<S: serde::Serializer>(end: &End, serializer: S) -> Result<S::Ok, S::Error> {
@@ -293,6 +293,10 @@ pub struct ShotReport {
     pub table_time: f32,
     /// The three-cushion scoring check (a carom table with three balls).
     pub three_cushion: Option<ThreeCushion>,
+    /// The chosen object ball and pocket on the whole table: `pocketed` only if the ball
+    /// drops there before anything else touches it (the guidance's `target` follows its
+    /// first path alone); `in_the_way`, the ball it meets first.
+    pub target_whole_table: Option<WholeTarget>,
 }
 
 /// The report as one line of JSON (what `--json` prints).
@@ -383,6 +387,7 @@ impl ShotReport {
             events: whole.events.clone(),
             table_time: whole.time,
             three_cushion: whole.three_cushion.clone(),
+            target_whole_table: whole.target.clone(),
         }
     }
 
@@ -425,6 +430,20 @@ impl ShotReport {
             self.table_time,
             ends.join(", ")
         );
+        if let (Some(whole), Some(target)) = (&self.target_whole_table, &self.target) {
+            let object = target.object;
+            let verdict = match (whole.pocketed, whole.first, whole.in_the_way) {
+                (true, ..) => format!("ball {object} drops into {}", names.phrase(target.pocket)),
+                (false, "ball", Some(ball)) => {
+                    format!("ball {ball} is in the way: ball {object} meets it before the pocket")
+                }
+                (false, "pocket", _) => format!("ball {object} drops into another pocket"),
+                (false, "cushion", _) => format!("ball {object} hits a cushion first"),
+                (false, "none", _) => format!("the cue ball does not reach ball {object}"),
+                _ => format!("ball {object} stops short"),
+            };
+            text.push_str(&format!("\nwhole table, target: {verdict}"));
+        }
         if let Some(check) = &self.three_cushion {
             let detail = match (check.first, check.second) {
                 (Some(first), Some(second)) => format!(

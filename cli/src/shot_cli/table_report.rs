@@ -99,6 +99,62 @@ impl ThreeCushion {
     }
 }
 
+/// The chosen object ball and pocket on the whole table: whether the ball drops there,
+/// and if not, what it meets first after the cue ball sends it off.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct WholeTarget {
+    /// Whether the object ball drops into the chosen pocket before anything else
+    /// touches it.
+    pub pocketed: bool,
+    /// The ball in its way: the first ball it hits after the cue ball's contact (or the
+    /// ball that hits it), if that comes first.
+    pub in_the_way: Option<usize>,
+    /// What it meets first: `pocket` (the chosen one or another), `ball`, `cushion`, or
+    /// `rest` if it stops; `none` if the cue ball never touches it.
+    pub first: &'static str,
+}
+
+impl WholeTarget {
+    /// The verdict for `object` and `pocket` over `events` (time order).
+    pub fn check(events: &[EventReport], object: usize, pocket: usize) -> Self {
+        let involves = |e: &EventReport| e.balls.contains(&object);
+        // The cue ball's contact with the object ball sends it off.
+        let Some(start) = events
+            .iter()
+            .position(|e| e.kind == "ball" && involves(e) && e.balls.contains(&0))
+        else {
+            return Self {
+                pocketed: false,
+                in_the_way: None,
+                first: "none",
+            };
+        };
+        let next = events[start + 1..].iter().find(|e| involves(e));
+        match next {
+            Some(e) if e.kind == "pocket" => Self {
+                pocketed: e.pocket == Some(pocket),
+                in_the_way: None,
+                first: "pocket",
+            },
+            Some(e) if e.kind == "ball" => Self {
+                pocketed: false,
+                in_the_way: e.balls.iter().copied().find(|&b| b != object),
+                first: "ball",
+            },
+            Some(e) => Self {
+                pocketed: false,
+                in_the_way: None,
+                first: e.kind,
+            },
+            None => Self {
+                pocketed: false,
+                in_the_way: None,
+                first: "rest",
+            },
+        }
+    }
+}
+
 /// One stretch of a ball's path: from simulation time `since`, `motion`, until `until`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Segment {
@@ -123,6 +179,8 @@ pub struct TableOutcome {
     pub time: f32,
     /// The scoring check, on a carom table with three balls.
     pub three_cushion: Option<ThreeCushion>,
+    /// The chosen object ball and pocket on the whole table, if a pocket was chosen.
+    pub target: Option<WholeTarget>,
 }
 
 /// Simulate the whole table for `request` played with `stroke`; `cue_launch` is the cue
@@ -192,7 +250,11 @@ pub fn simulate(
     }
     let three_cushion = (request.table_name == "carom" && scene.balls().len() == 3)
         .then(|| ThreeCushion::check(&events));
+    let target = request
+        .pocket
+        .map(|pocket| WholeTarget::check(&events, request.object.unwrap_or(1), pocket));
     Ok(TableOutcome {
+        target,
         final_positions: finish
             .positions()
             .iter()
