@@ -34,8 +34,10 @@
 //! time): checked when a recording exists, else listed as unchecked.
 //!
 //! Besides the blocks, `docs/tradeoff.md` and its plot are rendered whole from the
-//! measurements in `docs/tradeoff.json` ([`tradeoff`]).
+//! measurements in `docs/tradeoff.json` ([`tradeoff`]), and `docs/shot-cli.svg` is
+//! `cuesight shot`'s drawing of the page's example ([`drawing`]).
 
+mod drawing;
 mod tradeoff;
 mod values;
 
@@ -115,9 +117,10 @@ pub fn run(args: &Args) -> Result {
             println!("xtask docs: updated {shown}");
         }
     }
-    let tradeoff = tradeoff::run(args.check)?;
-    blocks_seen += tradeoff.compared;
-    stale.extend(tradeoff.stale);
+    for outcome in [tradeoff::run(args.check)?, drawing::run(args.check)?] {
+        blocks_seen += outcome.compared;
+        stale.extend(outcome.stale);
+    }
     if args.check && !stale.is_empty() {
         return Err(Failure::new(format!(
             "{} of {blocks_seen} generated blocks are stale (run `cargo xtask docs`):\n{}",

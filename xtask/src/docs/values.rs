@@ -10,7 +10,7 @@ use crate::format::thousands;
 use crate::{qemu, size};
 
 /// Runs `line` (split at spaces) from the repository root; its stdout and stderr.
-fn output_of(line: &str) -> Result<String> {
+pub(super) fn output_of(line: &str) -> Result<String> {
     let mut words = line.split_whitespace();
     let program = words
         .next()
