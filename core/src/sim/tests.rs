@@ -46,20 +46,30 @@ fn random_scene(rng: &mut Rng, table: Table, balls: usize) -> Scene {
     scene
 }
 
+/// The first `N` events (kind, ball) of `stroke` played on `scene` with the pool setup,
+/// how many events there were, and the finish.
+fn first_events<const N: usize>(
+    scene: &Scene,
+    stroke: &Stroke,
+) -> ([Option<(EventKind, usize)>; N], usize, Finish) {
+    let mut kinds = [None; N];
+    let mut n = 0;
+    let end = play(scene, stroke, &Setup::POOL, |event, _| {
+        if let Some(slot) = kinds.get_mut(n) {
+            *slot = Some((event.kind, event.ball));
+        }
+        n += 1;
+    })
+    .unwrap();
+    (kinds, n, end)
+}
+
 #[test]
 fn a_stun_shot_stops_the_cue_ball_and_sends_the_object_ball_off_the_far_cushion() {
     let mut scene = Scene::new(Table::pool(), R, [0.635, 0.635]).unwrap();
     scene.add_ball([1.27, 0.635]).unwrap();
     let stroke = Stroke::new(3.0, TipOffset::CENTRE, [1.0, 0.0]).unwrap();
-    let mut kinds = [None; 8];
-    let mut n = 0;
-    let end = play(&scene, &stroke, &Setup::POOL, |event, _| {
-        if n < kinds.len() {
-            kinds[n] = Some((event.kind, event.ball));
-        }
-        n += 1;
-    })
-    .unwrap();
+    let (kinds, n, end) = first_events::<8>(&scene, &stroke);
     assert_eq!(kinds[0], Some((EventKind::Ball, 0)), "{kinds:?}");
     assert!(
         kinds[..n].contains(&Some((EventKind::Cushion, 1))),
@@ -217,15 +227,7 @@ fn a_ball_hanging_in_the_jaws_drops_when_hit_towards_the_pocket() {
     let mut scene = Scene::new(Table::pool(), R, [0.4, 0.4]).unwrap();
     scene.add_ball([0.06, 0.06]).unwrap(); // x + y = 0.12, the mouth line's 0.163
     let stroke = Stroke::new(2.0, TipOffset::CENTRE, [-1.0, -1.0]).unwrap();
-    let mut kinds = [None; 3];
-    let mut n = 0;
-    let end = play(&scene, &stroke, &Setup::POOL, |event, _| {
-        if n < kinds.len() {
-            kinds[n] = Some((event.kind, event.ball));
-        }
-        n += 1;
-    })
-    .unwrap();
+    let (kinds, _, end) = first_events::<3>(&scene, &stroke);
     assert_eq!(kinds[0], Some((EventKind::Ball, 0)), "{kinds:?}");
     assert_eq!(kinds[1], Some((EventKind::Pocket(0), 1)), "{kinds:?}");
     assert_eq!(end.position(1), None);

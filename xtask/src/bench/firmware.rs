@@ -163,6 +163,13 @@ pub fn measure(scenes: &Path, dir: &Path, timeout: Duration) -> Result<Vec<Run>>
     Ok(runs)
 }
 
+/// Records a figure the bench-firmware step of `cargo xtask test` measures, for
+/// `cargo xtask docs --check`, which runs after it.
+pub(super) fn record_figure(key: &str, value: &dyn std::fmt::Display) -> Result {
+    cuesight_figures::record_with(key, value, "cargo xtask test --only bench-firmware")
+        .map_err(|e| Failure::new(format!("recording figure {key}: {e}")))
+}
+
 /// Builds the release image of `bench-firmware`'s binary `bin`, runs it in QEMU and
 /// returns what it printed (kept in `target/<bin>.txt` of the bench firmware).
 pub(super) fn run_probe(bin: &str, timeout: Duration) -> Result<String> {

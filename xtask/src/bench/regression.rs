@@ -96,11 +96,7 @@ pub fn check_kimgrip_count() -> Result {
 /// (`bench-kimgrip-SHOT`, whole instructions; `bench-kimgrip-mean` and `-max` as the
 /// gate prints them), for `cargo xtask docs --check`, which runs after this step.
 fn record_counts(shots: &[Shot], mean: f64) -> Result {
-    const COMMAND: &str = "cargo xtask test --only bench-firmware";
-    let record = |key: &str, value: &dyn std::fmt::Display| {
-        cuesight_figures::record_with(key, value, COMMAND)
-            .map_err(|e| Failure::new(format!("recording figure {key}: {e}")))
-    };
+    let record = super::firmware::record_figure;
     for shot in shots {
         let key = format!("bench-kimgrip-{}", shot.label);
         record(&key, &format!("{:.0}", shot.instructions))?;

@@ -7,7 +7,7 @@
 
 use std::time::Duration;
 
-use super::firmware::run_probe;
+use super::firmware::{record_figure, run_probe};
 use crate::cmd::{Failure, Result};
 use crate::format::thousands;
 
@@ -49,11 +49,7 @@ pub fn run(timeout: Duration) -> Result {
             probes.len()
         )));
     }
-    const COMMAND: &str = "cargo xtask test --only bench-firmware";
-    let record = |key: String, value: String| {
-        cuesight_figures::record_with(&key, &value, COMMAND)
-            .map_err(|e| Failure::new(format!("recording figure {key}: {e}")))
-    };
+    let record = |key: String, value: String| record_figure(&key, &value);
     // Host and device bit-identical: the device's digest of each shot's result against
     // the host's, from the same core (`cuesight::sim::shots`).
     let mut identical = 0;
