@@ -110,9 +110,12 @@ fn options_reach_the_model() {
         "0.03",
         "--mass",
         "0.2",
+        "--spin",
+        "0,60,0",
         "--model",
         "kim",
     ]);
+    // Topspin keeps the contact sliding, inside Kim's validity domain.
     assert_eq!(v["model"], "kim");
     let input = &v["input"];
     for (key, value) in [
@@ -220,6 +223,55 @@ fn invalid_physics_values_name_their_field() {
     }
     let line = rejected(&["--speed", "2", "--cut", "90", "--roll"], 1);
     assert!(line.starts_with("error: cut "), "{line}");
+}
+
+/// Issue 16's cases outside a model's validity domain: a one-line refusal naming the
+/// model, the limit and the scene's value (exit 1); `--model exact` and `auto` answer.
+#[test]
+fn scenes_outside_a_models_domain_are_refused() {
+    let grippy = [
+        "--speed",
+        "1",
+        "--cut",
+        "30",
+        "--spin",
+        "-30,35,0",
+        "--mu",
+        "0.9",
+        "--mu-s",
+        "1",
+        "--restitution",
+        "0.6",
+    ];
+    let line = rejected(&grippy, 1);
+    assert_eq!(
+        line.trim_end(),
+        "error: kim-grip is valid only where mu * mu_s <= 0.2 (here 0.9); use exact or auto"
+    );
+    for model in ["exact", "auto"] {
+        let mut args = grippy.to_vec();
+        args.extend_from_slice(&["--model", model]);
+        assert_eq!(json(&args)["model"], model);
+    }
+    // A stun cut at μ 0.06 grips in Kim's first order (gripping index 1.10).
+    let stun = [
+        "--speed",
+        "1.5",
+        "--cut",
+        "-20",
+        "--mu",
+        "0.06",
+        "--restitution",
+        "0.9",
+    ];
+    let mut args = stun.to_vec();
+    args.extend_from_slice(&["--mu-s", "0.2", "--radius", "0.03", "--mass", "0.2"]);
+    args.extend_from_slice(&["--model", "kim"]);
+    let line = rejected(&args, 1);
+    assert!(
+        line.starts_with("error: kim is valid only where gripping index mu p0 / s* <= 1"),
+        "{line}"
+    );
 }
 
 #[test]

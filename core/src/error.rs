@@ -1,6 +1,7 @@
 //! Typed errors: every invalid input is rejected at construction with the field it
 //! concerns, so a prediction never starts from a value it cannot handle.
 
+use crate::validity::{Reason, Tier};
 use core::fmt;
 
 /// Result alias for the crate.
@@ -205,6 +206,17 @@ pub enum Error {
         /// Simulated time reached (s).
         time: f32,
     },
+    /// The scene is outside the model's declared validity domain
+    /// ([`crate::validity`]): its answer there would not be physical, or not as
+    /// accurate as documented. `Exact` (or `Auto`) answers every valid input.
+    OutsideValidity {
+        /// The model that refused.
+        model: Tier,
+        /// Which limit the scene crosses.
+        reason: Reason,
+        /// The scene's value of the limited quantity (see [`Reason`]).
+        value: f32,
+    },
 }
 
 impl Error {
@@ -212,7 +224,10 @@ impl Error {
     pub const fn field(&self) -> Option<Field> {
         match self {
             Error::NotFinite { field } | Error::OutOfRange { field, .. } => Some(*field),
-            Error::NumericalFailure | Error::ModelLeftOut | Error::Unfinished { .. } => None,
+            Error::NumericalFailure
+            | Error::ModelLeftOut
+            | Error::Unfinished { .. }
+            | Error::OutsideValidity { .. } => None,
         }
     }
 }
@@ -239,6 +254,16 @@ impl fmt::Display for Error {
             Error::Unfinished { events, time } => write!(
                 f,
                 "the shot had not ended after {events} events and {time} s (its event or time limit)"
+            ),
+            Error::OutsideValidity {
+                model,
+                reason,
+                value,
+            } => write!(
+                f,
+                "{} is valid only where {} (here {value}); use exact or auto",
+                model.name(),
+                reason.limit()
             ),
         }
     }

@@ -11,7 +11,10 @@
 //!
 //! Assembled by [`Outcome::from_impulses`] this reproduces (52), (53) and (54) with
 //! E1's corrected object-ball spin `Ω_y = μ(1+e)/(2ν) · U cos φ / R · (1 − μ_s) sin θ₀`.
-//! The model assumes the contact slides throughout; see `kim_grip` for the fix.
+//! The model assumes the contact slides throughout. Where the friction impulse `μ p₀`
+//! exceeds the stick impulse `s* = |K⁻¹ v₀|` (the contact grips) it refuses the scene
+//! with [`crate::Error::OutsideValidity`] ([`crate::validity::Reason::Grips`]); see
+//! `kim_grip` for the model that covers gripping.
 
 use crate::error::Result;
 use crate::impact::Impact;
@@ -53,6 +56,20 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
     } else {
         R::ZERO
     };
+    // The validity domain (`crate::validity`): the slide must not outlast the slip.
+    // Stick impulse s* = |K⁻¹ v₀| with K = diag(7, k_z), k_z = (2 + ν − μ_s)/ν with
+    // the object ball pressed (the μ_s Kim applies), 6 otherwise; in units of `scale`.
+    let k_z = (R::of(2.4) - mu_s) / R::of(crate::NU);
+    let (stick_y, stick_z) = (unit_y / R::of(7.0), unit_z / k_z);
+    let stick = R::sqrt(stick_y * stick_y + stick_z * stick_z) * scale;
+    if friction > stick {
+        // +∞ (a stick impulse that underflows) reported as the largest f32.
+        let grip_index = R::min(friction / stick, R::of(f32::MAX)).to_f32();
+        return Err(crate::validity::outside(
+            crate::validity::Reason::Grips,
+            grip_index,
+        ));
+    }
     let table = mu_s * R::abs(j_z);
     let normal = frictionless_normal * (R::ONE - half * mu * mu_s * sin_theta0);
     let impulses = SpecificImpulses {

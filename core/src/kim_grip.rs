@@ -73,10 +73,12 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
     }
 }
 
-/// Every scene: any friction law, the cue ball's table friction, slips down to 1 pm/s
+/// Every scene of the validity domain (`crate::validity`; outside it the typed
+/// refusal): any friction law, the cue ball's table friction, slips down to 1 pm/s
 /// (scaled to their largest component); below that, exact gearing.
 #[inline(never)]
 fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
+    crate::validity::kim_grip(params)?;
     let half = R::of(0.5);
     let law = params.friction_law();
     let restitution = R::of(params.restitution());

@@ -51,6 +51,7 @@ pub mod sim;
 pub mod strike;
 pub mod table;
 pub mod travel;
+pub mod validity;
 mod vector;
 
 pub use error::{Error, Field, Result};

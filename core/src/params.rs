@@ -27,7 +27,8 @@ pub struct Params {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct Derived {
-    /// μ when `KimGrip`'s fast path applies (constant μ in (0, 1], μ_ct = 0), else 0.
+    /// μ when `KimGrip`'s fast path applies (constant μ in (0, 1], μ_ct = 0, inside
+    /// `KimGrip`'s validity domain), else 0.
     pub kim_grip_mu: f32,
     /// Smallest `|v₀|²` ((m/s)²) the fast path takes: its `MIN_SLIP_SQUARED` when it
     /// applies, +∞ when not, so that one comparison of the slip sends every other
@@ -58,7 +59,16 @@ impl Derived {
         // check, and the fast path's guard relies on the validated range (the general
         // path guards every impulse).
         let kim_grip_mu = match friction {
-            FrictionLaw::Constant(mu) if mu > 0.0 && mu <= 1.0 && mu_ct == 0.0 => mu,
+            // Scenes outside `KimGrip`'s validity domain go to the general path, which
+            // refuses them (`validity::kim_grip`): the fast path pays nothing for it.
+            FrictionLaw::Constant(mu)
+                if mu > 0.0
+                    && mu <= 1.0
+                    && mu_ct == 0.0
+                    && mu * mu_s <= crate::validity::KIM_GRIP_MAX_MU_MU_S =>
+            {
+                mu
+            }
             _ => 0.0,
         };
         let pressed_k_z = 6.0 - 2.5 * mu_s;

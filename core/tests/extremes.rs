@@ -26,16 +26,23 @@ const ALL: [Model; 7] = [
     Model::Auto { tolerance: 1e-6 },
 ];
 
-/// Every model in f32 and f64: no error, finite outputs and angles; the exact mirror
-/// image (built independently by `mirror`) gives the mirrored outcome bit for bit.
+/// Every model in f32 and f64: no error but a declared refusal ([`answer`]), finite
+/// outputs and angles; the exact mirror image (built independently by `mirror`) gives
+/// the mirrored outcome bit for bit, or the same refusal.
 fn check_all(params: &Params, impact: &Impact, mirror: &Impact, what: &str) {
     check_models(&ALL, params, impact, mirror, what)
 }
 
 fn check_models(models: &[Model], params: &Params, impact: &Impact, mirror: &Impact, what: &str) {
     for &model in models {
-        let out = collide(params, impact, model)
-            .unwrap_or_else(|e| panic!("{what}: {model:?} -> {e} ({params:?} {impact:?})"));
+        let Some(out) = answer(params, impact, model) else {
+            assert_eq!(
+                collide(params, mirror, model).err(),
+                collide(params, impact, model).err(),
+                "{what}: {model:?} mirror"
+            );
+            continue;
+        };
         assert!(out.is_finite(), "{what}: {model:?} {out:?}");
         assert!(
             out.throw_angle().is_finite()
@@ -44,9 +51,12 @@ fn check_models(models: &[Model], params: &Params, impact: &Impact, mirror: &Imp
             "{what}: {model:?} angles"
         );
         assert!(out.impulses.normal >= 0.0, "{what}: {model:?} {out:?}");
-        let wide = collide_f64(params, impact, model)
-            .unwrap_or_else(|e| panic!("{what}: {model:?} f64 -> {e}"));
-        assert!(wide.is_finite(), "{what}: {model:?} f64");
+        match collide_f64(params, impact, model) {
+            Ok(wide) => assert!(wide.is_finite(), "{what}: {model:?} f64"),
+            // f32 answered at the edge of the domain; f64 may fall just outside.
+            Err(cuesight::Error::OutsideValidity { .. }) if may_refuse(params, impact, model) => {}
+            Err(e) => panic!("{what}: {model:?} f64 -> {e}"),
+        }
         let image = collide(params, mirror, model).unwrap();
         if let Some(field) = mirror_mismatch(&out, &image) {
             panic!("{what}: {model:?} mirror differs in {field}: {out:?} vs {image:?}");
@@ -136,7 +146,10 @@ fn head_on_is_symmetric_and_near_head_on_is_continuous() {
                 let head_on =
                     Impact::from_cut(speed, 0.0, [0.0, top * speed / radius, 0.0]).unwrap();
                 for model in ALL {
-                    let a = collide(&params, &head_on, model).unwrap();
+                    // Kim refuses every stun shot here (zero slip: it grips).
+                    let Some(a) = answer(&params, &head_on, model) else {
+                        continue;
+                    };
                     for v in [a.cue_ball.velocity, a.object_ball.velocity] {
                         assert_eq!(v.y, 0.0, "{pname} {model:?}");
                     }
@@ -146,7 +159,9 @@ fn head_on_is_symmetric_and_near_head_on_is_continuous() {
                     for cut in [1e-6f32, -1e-6] {
                         let near =
                             Impact::from_cut(speed, cut, [0.0, top * speed / radius, 0.0]).unwrap();
-                        let b = collide(&params, &near, model).unwrap();
+                        let Some(b) = answer(&params, &near, model) else {
+                            continue;
+                        };
                         let jump = max_difference(&a, &b, radius) / speed;
                         // Kim's friction direction turns by 90° when a 1e-6 U side slip
                         // appears on a stun shot (its zero-slip discontinuity).
@@ -212,7 +227,9 @@ fn exact_gearing_has_no_friction() {
                 let image = mirrored(&impact);
                 check_all(&params, &impact, &image, &format!("gearing {pname}"));
                 for model in [Model::Kim, Model::KimGrip, Model::SeedExact, Model::Exact] {
-                    let out = collide(&params, &impact, model).unwrap();
+                    let Some(out) = answer(&params, &impact, model) else {
+                        continue;
+                    };
                     let expected = if params.friction_law().is_frictionless() {
                         Regime::Frictionless
                     } else {
@@ -277,7 +294,9 @@ fn subnormal_and_limit_inputs() {
             let models: &[Model] = &ALL;
             check_models(models, &params, &impact, &image, &what);
             for &model in models {
-                let out = collide(&params, &impact, model).unwrap();
+                let Some(out) = answer(&params, &impact, model) else {
+                    continue;
+                };
                 let (before, after) = energies(&case, &out);
                 let allowance = energy_allowance(&case, model, &out);
                 assert!(
@@ -397,7 +416,11 @@ fn grip_boundary_is_continuous_in_every_parameter() {
                             impact: i,
                             tolerance: 1.0,
                         };
-                        (!in_tiny_slip_bug_region(&c)).then(|| collide(&p, &i, model).unwrap())
+                        if in_tiny_slip_bug_region(&c) {
+                            None
+                        } else {
+                            answer(&p, &i, model)
+                        }
                     })
                 };
                 let key = |x: f32| eval(x).map(|o| o.regime);
@@ -474,8 +497,14 @@ fn friction_to_zero_is_continuous() {
             ),
         ] {
             for model in ALL {
-                let a = collide(&zero, &case.impact, model).unwrap();
-                let b = collide(&small, &case.impact, model).unwrap();
+                // Both refused (μ·μ_s past KimGrip's limit), or only the tiny μ_ct at
+                // e* < 0.01 (the domain's own edge): nothing to compare.
+                let (Some(a), Some(b)) = (
+                    answer(&zero, &case.impact, model),
+                    answer(&small, &case.impact, model),
+                ) else {
+                    continue;
+                };
                 let jump = max_difference(&a, &b, p.radius()) / case.impact.speed();
                 assert!(jump <= 1e-6, "{name} {model:?}: {jump:e} U in {case:?}");
             }
@@ -486,23 +515,25 @@ fn friction_to_zero_is_continuous() {
 /// `KimGrip` is continuous through zero slip (exact gearing ± a few ulps of side spin)
 /// and through the switch of the pressed ball (ω_y through 0): the stick impulse is
 /// linear in the slip. `Kim` is not — its friction impulse keeps the size μ p₀ whatever
-/// the slip — and this test records that documented discontinuity: the jump reaches the
-/// size of the full friction impulse, bounded by `(1 + 1/ν)(1 + μ_s) μ p₀`.
+/// the slip, a jump of up to 2.5 μ p₀ until its validity domain — so near zero slip with
+/// μ > 0 it now refuses (the contact grips: `Reason::Grips`).
 #[test]
 fn zero_slip_continuity() {
-    let mut kim_worst = 0.0f32;
+    let mut kim_refusals = 0usize;
     for (_, radius, mass) in BALLS {
         for (pname, params) in params_set(radius, mass) {
             let vy = 8.0 * radius;
             let geared = Impact::from_velocity([1.0, vy], [0.0, 0.0, -8.0]).unwrap();
-            let at = collide(&params, &geared, Model::KimGrip).unwrap();
+            let Some(at) = answer(&params, &geared, Model::KimGrip) else {
+                continue;
+            };
             for ulps in [1u32, 2, 16, 256] {
                 for sign in [1i32, -1] {
                     let wz = f32::from_bits((8.0f32.to_bits() as i32 + sign * ulps as i32) as u32);
                     let wy = sign as f32 * ulps as f32 * 1e-6;
                     for spin in [[0.0, 0.0, -wz], [0.0, wy, -8.0], [0.0, wy, -wz]] {
                         let near = Impact::from_velocity([1.0, vy], spin).unwrap();
-                        let out = collide(&params, &near, Model::KimGrip).unwrap();
+                        let out = answer(&params, &near, Model::KimGrip).unwrap();
                         let (sy, sz) = near.initial_slip(radius);
                         let slip = sy.hypot(sz);
                         let jump = max_difference(&at, &out, radius);
@@ -513,25 +544,20 @@ fn zero_slip_continuity() {
                             jump <= input + 2.5 * slip + 1e-6,
                             "{pname}: jump {jump:e} for slip {slip:e}"
                         );
-                        let kim = collide(&params, &near, Model::Kim).unwrap();
-                        let kim_at = collide(&params, &geared, Model::Kim).unwrap();
-                        let kim_jump = max_difference(&kim_at, &kim, radius);
-                        let mu = params.friction_law().at(slip);
-                        let p0 = 0.5 * (1.0 + params.restitution());
-                        let bound =
-                            input + 3.5 * (1.0 + params.mu_s()) * mu * p0 * (1.0 + 1e-5) + 1e-6;
-                        assert!(kim_jump <= bound, "{pname}: Kim jump {kim_jump} > {bound}");
-                        if mu > 0.0 {
-                            kim_worst = kim_worst.max((kim_jump - input) / (mu * p0));
+                        // Refused iff μ p₀ exceeds the stick impulse (`answer` checks it).
+                        if answer(&params, &near, Model::Kim).is_none() {
+                            kim_refusals += 1;
                         }
                     }
                 }
             }
         }
     }
-    println!("Kim's jump at zero slip: up to {kim_worst:.3} μ p₀");
-    assert!(kim_worst > 1.0, "Kim's zero-slip discontinuity is expected");
-    cuesight_figures::record!("reliability-extremes-kim-zero-slip-jump", "{kim_worst:.1}");
+    assert!(kim_refusals > 0, "no scene with friction near zero slip");
+    cuesight_figures::record!(
+        "reliability-extremes-kim-zero-slip-refusals",
+        "{kim_refusals}"
+    );
 }
 
 /// `Auto` switches tier where an estimate crosses the tolerance; the jump across that
@@ -657,8 +683,8 @@ fn kim_grip_subnormal_inputs() {
     let params = Params::POOL.with_friction_law(law);
     let impact = Impact::from_velocity([1.0, 0.0], [1e-40; 3]).unwrap();
     for model in Model::ALL {
-        let out = collide(&params, &impact, model);
-        assert!(out.is_ok(), "{model:?}: {out:?}");
+        // Kim refuses: a slip of 1e-40-scale grips at once.
+        assert!(answer(&params, &impact, model).is_some() || model == Model::Kim);
     }
 }
 

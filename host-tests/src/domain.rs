@@ -237,8 +237,11 @@ pub type ModelError = Option<crate::compare::SceneError>;
 pub struct Scored {
     /// The scene.
     pub scene: DomainScene,
-    /// Per model.
+    /// Per model: its error against the reference, `None` where it returned an error.
     pub errors: [ModelError; 6],
+    /// Per model: the error it returned, if any (a refusal outside its validity domain,
+    /// [`cuesight::Error::OutsideValidity`], or a failure).
+    pub returned: [Option<cuesight::Error>; 6],
     /// The reference's object-ball speed over U (the throw angle is ill-conditioned where
     /// it is small: at |φ| → 90° the object ball barely moves).
     pub object_speed: f64,
@@ -255,14 +258,11 @@ impl Scored {
 pub fn score(scene: &DomainScene) -> Scored {
     let r = scene.reference();
     let (params, impact) = (scene.params(), scene.impact());
-    let errors = MODELS.map(|(_, model)| {
-        collide(&params, &impact, model)
-            .ok()
-            .map(|out| scene_error(&scene.scene, &out, &r))
-    });
+    let results = MODELS.map(|(_, model)| collide(&params, &impact, model));
     Scored {
         scene: *scene,
-        errors,
+        errors: results.map(|result| result.ok().map(|out| scene_error(&scene.scene, &out, &r))),
+        returned: results.map(Result::err),
         object_speed: r.object_ball.velocity.length() / scene.scene.speed(),
     }
 }
@@ -309,7 +309,10 @@ pub struct Cell {
     pub count: usize,
     /// `within[m][t]`: scenes where model `m` is within [`THRESHOLDS`]`[t]` of U.
     pub within: [[usize; 3]; 6],
-    /// Scenes where the model returned an error.
+    /// Scenes the model refused outside its validity domain (counted outside every
+    /// threshold).
+    pub refused: [usize; 6],
+    /// Scenes where the model returned any other error.
     pub failed: [usize; 6],
     /// Worst `max(|Δv|, R|Δω|)/U` per model (finite outcomes only).
     pub worst: [f64; 6],
@@ -341,7 +344,10 @@ impl Cell {
         self.count += 1;
         for m in 0..MODELS.len() {
             match s.errors[m] {
-                None => self.failed[m] += 1,
+                None => match s.returned[m] {
+                    Some(cuesight::Error::OutsideValidity { .. }) => self.refused[m] += 1,
+                    _ => self.failed[m] += 1,
+                },
                 Some(e) => {
                     let c = e.velocity.max(e.spin);
                     for (t, &x) in THRESHOLDS.iter().enumerate() {
@@ -578,13 +584,14 @@ impl Map {
     fn worst_model_cells(&self, m: usize) -> String {
         let all = &self.all;
         format!(
-            "{:.3e} | {:.3}° | {:.3}° | {} / {} / {} | {}",
+            "{:.3e} | {:.3}° | {:.3}° | {} / {} / {} | {} | {}",
             all.worst[m],
             all.worst_throw[m],
             all.worst_throw_moving[m],
             all.count - all.within[m][0],
             all.count - all.within[m][1],
             all.count - all.within[m][2],
+            all.refused[m],
             all.failed[m]
         )
     }
@@ -632,7 +639,7 @@ impl Map {
         }
         let _ = writeln!(
             out,
-            "\n#### Worst case per model (all scenes)\n\n| model | worst max(\\|Δv\\|, R\\|Δω\\|)/U | worst throw error | worst throw error, object ball ≥ {} % of U | scenes outside 0.05 % / 0.5 % / 5 % of U | model errors |\n|---|---|---|---|---|---|",
+            "\n#### Worst case per model (all scenes)\n\n| model | worst max(\\|Δv\\|, R\\|Δω\\|)/U | worst throw error | worst throw error, object ball ≥ {} % of U | scenes outside 0.05 % / 0.5 % / 5 % of U (refusals included) | refused outside the validity domain | other errors |\n|---|---|---|---|---|---|---|",
             100.0 * MIN_OBJECT_SPEED
         );
         for (m, (name, _)) in MODELS.iter().enumerate() {

@@ -12,3 +12,4 @@ pub mod reference;
 pub mod shot_scenes;
 pub mod strokes;
 pub mod timed;
+pub mod validity;

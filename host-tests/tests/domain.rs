@@ -79,7 +79,16 @@ fn domain_map() {
     assert!(map.speed_dependent.count >= 10_000);
     assert!(map.cue_table.count >= 20_000);
 
-    // Every model answers, with finite errors.
+    // Every model answers, with finite errors, or refuses as its validity domain
+    // declares (only Kim and KimGrip have limits).
+    for s in &scored {
+        for (m, (name, model)) in MODELS.iter().enumerate() {
+            if let Some(error) = s.returned[m] {
+                let declared = cuesight_host::validity::declared(&s.scene.params(), *model, &error);
+                assert!(declared, "{name}: {error} on {}", s.scene.describe());
+            }
+        }
+    }
     for (m, (name, _)) in MODELS.iter().enumerate() {
         assert_eq!(map.all.failed[m], 0, "{name} returned errors");
         assert!(map.all.worst[m].is_finite(), "{name}: non-finite error");

@@ -26,24 +26,23 @@
 //!   the work balance was met within a rounding of the compression's end with v_n still
 //!   a little below zero; the end is now where the balls separate (core/src/exact.rs),
 //!   and the low-e* set of 200,000 scenes (e* × 0.02) has no violation.
-//! * `Kim`: energy grows wherever its sliding friction impulse overshoots the slip
-//!   reversal (10⁶ set: 97,090 scenes, up to ×7.5): asserted where the gripping index
-//!   `g = (1 + 1/ν) μ_max (1 + e*) U_x / v_∥0 ≤ 2` (first violation at g = 2.02).
-//!   Why 2: a specific friction impulse `j` (m/s) on the object ball and `−j` on the cue
-//!   ball change the tangential slip of the contact by `2 (1 + 1/ν) j = 7 j` along `y`
-//!   (less along `z`), so while the slip falls linearly from `v₀` they do work
-//!   `−j (v₀ − 7 j / 2)` per unit mass: positive once `7 j > 2 v₀`. Kim's `j` is
-//!   `μ p₀` with `p₀ = (1 + e*) U_x / 2`, and `7 μ p₀ / v₀` is `g`. Every other invariant
-//!   everywhere.
-//! * `KimGrip`: energy asserted for μ·μ_s ≤ 0.7 (10⁶ set: 22 scenes, from μ·μ_s = 0.702,
-//!   up to ×1.19). The object ball's table friction exceeds μ_s times its table normal
-//!   impulse in 15.5 % of scenes (10⁶ set: 155,350, up to ×1.25 the cone and 3.7e-2 M U,
-//!   from μ·μ_s = 0.0007; the README's worked example is 1.2 % over), every one with
-//!   topspin pressing the object ball: asserted only where nothing presses it (ω_y ≤ 0)
-//!   or μ_s = 0. The balls end moving into each other with cue-ball/table friction at
-//!   e* < 0.01 (10⁶ set: 4 scenes; low-e* sets: 15 and 36, every one with μ_ct > 0 and
-//!   e* ≤ 0.0091, up to 5.6e-4 U): asserted for μ_ct = 0 or e* ≥ 0.01. Every other
-//!   invariant everywhere.
+//! * `Kim`: every invariant wherever it answers. Its validity domain
+//!   (`cuesight::validity`) refuses every scene where its sliding friction impulse
+//!   `μ p₀` exceeds the stick impulse (`Reason::Grips`). Before that fence, energy grew
+//!   wherever the impulse overshot the slip reversal (10⁶ set: 97,090 scenes, up to
+//!   ×7.5, from gripping index `g = (1 + 1/ν) μ_max (1 + e*) U_x / v_∥0` = 2.02): a
+//!   specific friction impulse `j` on the object ball and `−j` on the cue ball change the
+//!   tangential slip by `7 j` along `y`, so while the slip falls linearly from `v₀` they
+//!   do work `−j (v₀ − 7 j / 2)` per unit mass, positive once `7 j > 2 v₀`.
+//! * `KimGrip`: energy, the approach and the other invariants wherever it answers; its
+//!   validity domain refuses μ·μ_s > 0.2 and, with μ_ct > 0, e* < 0.01. Before that
+//!   fence (10⁶ set): energy grew in 22 scenes from μ·μ_s = 0.702 (up to ×1.19), and the
+//!   balls ended moving into each other with cue-ball/table friction at e* ≤ 0.0091
+//!   (4 scenes; low-e* sets: 15 and 36, up to 5.6e-4 U). Left: the object ball's table
+//!   friction exceeds μ_s times its table normal impulse in 15.5 % of scenes (10⁶ set:
+//!   155,350, up to ×1.25 the cone and 3.7e-2 M U, from μ·μ_s = 0.0007; the README's
+//!   worked example is 1.2 % over), every one with topspin pressing the object ball:
+//!   asserted only where nothing presses it (ω_y ≤ 0) or μ_s = 0.
 //! * `Auto(1e-3)`, `Auto(1e-2)`: what the tiers they pick break: `KimGrip`'s table cone
 //!   (10⁶ set: 262 and 152 scenes, up to ×1.08 the cone, 2.2e-4 and 9.3e-4 M U):
 //!   asserted where ω_y ≤ 0 or μ_s = 0; every other invariant everywhere.
@@ -75,18 +74,9 @@ const SOLVERS: [(&str, Option<Model>); 8] = [
     ("Auto(1e-2)", Some(Model::Auto { tolerance: 1e-2 })),
     ("reference", None),
 ];
-const KIM: usize = 1;
 const KIM_GRIP: usize = 2;
 const AUTO_3: usize = 5;
 const AUTO_2: usize = 6;
-
-/// Largest μ·μ_s where `KimGrip` is asserted not to create energy.
-const KIM_GRIP_ENERGY_MU_MU_S: f64 = 0.7;
-/// Largest gripping index where `Kim` is asserted not to create energy.
-const KIM_ENERGY_GRIP_INDEX: f64 = 2.0;
-/// Smallest e* where `KimGrip` with μ_ct > 0 is asserted to leave the
-/// balls separating.
-const APPROACH_MIN_RESTITUTION: f64 = 0.01;
 
 /// Scene descriptors the domains are stated in.
 #[derive(Clone, Copy, Debug)]
@@ -129,12 +119,8 @@ impl Descriptors {
 /// Whether solver `s` is asserted to hold `invariant` in a scene (module docs).
 fn in_domain(s: usize, invariant: Invariant, d: &Descriptors) -> bool {
     let unpressed = d.spin_y <= 0.0 || d.mu_s == 0.0;
-    let separating = d.restitution >= APPROACH_MIN_RESTITUTION;
     match (s, invariant) {
-        (KIM, Invariant::Energy) => d.grip_index <= KIM_ENERGY_GRIP_INDEX,
-        (KIM_GRIP, Invariant::Energy) => d.mu * d.mu_s <= KIM_GRIP_ENERGY_MU_MU_S,
         (KIM_GRIP, Invariant::ObjectTableCone) => unpressed,
-        (KIM_GRIP, Invariant::Approach) => d.mu_ct == 0.0 || separating,
         (AUTO_3 | AUTO_2, Invariant::ObjectTableCone) => unpressed,
         _ => true,
     }
@@ -143,7 +129,8 @@ fn in_domain(s: usize, invariant: Invariant, d: &Descriptors) -> bool {
 /// Solver `s` on one scene: its checks, or `None` if it refused the scene.
 fn run(s: usize, params: &Params, impact: &Impact) -> Option<(Outcome, Measures)> {
     let outcome = match SOLVERS[s].1 {
-        Some(model) => collide(params, impact, model).ok()?,
+        // A refusal outside the model's validity domain must be the declared one.
+        Some(model) => cuesight_host::validity::answer(params, impact, model, SOLVERS[s].0)?,
         None => cuesight_host::reference::collide(params, impact),
     };
     Some((outcome, Measures::of(params, impact, &outcome)))
@@ -486,8 +473,6 @@ fn every_model_every_scene() {
     // What the domains exclude is not empty on this set: the test sees the failures the
     // module docs list, so a check that went blind would show here.
     for (s, inv) in [
-        (KIM, Invariant::Energy),
-        (KIM_GRIP, Invariant::Energy),
         (KIM_GRIP, Invariant::ObjectTableCone),
         (AUTO_3, Invariant::ObjectTableCone),
         (AUTO_2, Invariant::ObjectTableCone),
@@ -935,12 +920,12 @@ fn issue_cases() {
     }
 }
 
-/// Today's `KimGrip` at issue 16's `--speed 2 --cut 15 --roll --mu 1 --restitution 1
-/// --mu-s 1`: the check sees the energy gain the issue measured independently (×1.49).
-/// Item 3 of the issue fences or fixes `KimGrip` here; a refusal passes, a physical
-/// answer means this pin must go.
+/// Issue 16's `--speed 2 --cut 15 --roll --mu 1 --restitution 1 --mu-s 1`: `KimGrip`
+/// created energy there (×1.49, the object ball leaving faster than the cue ball came
+/// in; measured by this check until its validity domain). It now refuses the scene
+/// (μ·μ_s = 1 > 0.2), and `Exact`, like the reference, answers it physically.
 #[test]
-fn kim_grip_energy_gain_of_the_issue_is_seen() {
+fn kim_grip_refuses_the_energy_gain_of_the_issue() {
     let request = Collide {
         roll: true,
         mu: Some(1.0),
@@ -950,19 +935,16 @@ fn kim_grip_energy_gain_of_the_issue_is_seen() {
     };
     let prepared = request.prepare(&Defaults::POOL).unwrap();
     let (p, impact) = (prepared.params, prepared.impact);
-    let Ok(out) = collide(&p, &impact, Model::KimGrip) else {
-        return; // fenced (issue 16, item 3)
-    };
-    let m = Measures::of(&p, &impact, &out);
-    let ratio = m.energy_after / m.energy_before;
-    assert!(
-        (ratio - 1.49).abs() < 0.01,
-        "E'/E = {ratio} (issue 16: ×1.49)"
+    assert_eq!(
+        collide(&p, &impact, Model::KimGrip),
+        Err(cuesight::Error::OutsideValidity {
+            model: cuesight::validity::Tier::KimGrip,
+            reason: cuesight::validity::Reason::TableFriction,
+            value: 1.0,
+        })
     );
-    assert!(broken(&p, &impact, &out).contains(&Invariant::Energy));
-    // The object ball leaves faster than the cue ball came in.
-    assert!(out.object_ball.velocity.length() > 2.0);
-    // The same scene's reference is physical and loses energy.
+    let exact = collide(&p, &impact, Model::Exact).unwrap();
+    assert_eq!(broken(&p, &impact, &exact), vec![]);
     let r = cuesight_host::reference::collide(&p, &impact);
     assert_eq!(check(&p, &impact, &r), vec![]);
     let mr = Measures::of(&p, &impact, &r);

@@ -20,6 +20,7 @@
 use std::collections::BTreeSet;
 use std::fmt::Debug;
 
+use cuesight::validity::{Reason, Tier};
 use cuesight::{Error as CoreError, Field};
 use cuesight_link::error::{FrameFault, NoAim, SequenceFault, Unsupported};
 use cuesight_link::frame::{self, FrameReader, Received, MAX_FRAME, MAX_RAW};
@@ -629,6 +630,13 @@ fn core_errors() -> BoxedStrategy<CoreError> {
         Just(CoreError::NumericalFailure),
         Just(CoreError::ModelLeftOut),
         (u16s(), f32s()).prop_map(|(events, time)| CoreError::Unfinished { events, time }),
+        (units::<Tier>(), units::<Reason>(), f32s()).prop_map(|(model, reason, value)| {
+            CoreError::OutsideValidity {
+                model,
+                reason,
+                value,
+            }
+        }),
     ]
     .boxed()
 }
@@ -1233,6 +1241,8 @@ fn schema_enums() -> BTreeSet<(&'static str, &'static str)> {
         probe::variants::<GlitchKind>(),
         probe::variants::<CoreError>(),
         probe::variants::<Field>(),
+        probe::variants::<Tier>(),
+        probe::variants::<Reason>(),
         probe::variants::<ModelName>(),
         probe::variants::<RegimeName>(),
         probe::variants::<TableName>(),

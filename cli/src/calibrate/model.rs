@@ -59,7 +59,9 @@ impl FitKind {
 /// What computes the model's throw.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Solver {
-    /// The core's `KimGrip` tier, evaluated in f64 (`cuesight::collide_f64`).
+    /// The core's `KimGrip` tier, evaluated in f64 (`cuesight::collide_f64`); `Exact`
+    /// where the parameters leave `KimGrip`'s validity domain (μ(0)·μ_s > 0.2), which a
+    /// fit's search and its profile-likelihood scans can reach.
     KimGrip,
     /// The core's `Exact` tier, evaluated in f64.
     Exact,
@@ -181,7 +183,13 @@ pub fn model_throw_with(
                 Solver::KimGrip => Model::KimGrip,
                 _ => Model::Exact,
             };
-            let out = cuesight::collide_f64(&params, &impact, model).map_err(|e| e.to_string())?;
+            let out = match cuesight::collide_f64(&params, &impact, model) {
+                Err(cuesight::Error::OutsideValidity { .. }) => {
+                    cuesight::collide_f64(&params, &impact, Model::Exact)
+                }
+                answer => answer,
+            }
+            .map_err(|e| e.to_string())?;
             Ok(out.throw_angle_deg() as f64)
         }
         Solver::Reference => {

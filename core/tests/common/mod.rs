@@ -523,3 +523,63 @@ pub fn energy_rounding(case: &Case, model: Model) -> f64 {
         _ => 8.0 * EPS32,
     }
 }
+
+/// Whether `model` may refuse the scene under its declared validity domain
+/// (`cuesight::validity`), recomputed here in f64 from the inputs: `KimGrip` outside
+/// `μ·μ_s ≤ 0.2` or, with `μ_ct > 0` and `μ > 0`, below e* = 0.01; `Kim` where its friction
+/// impulse `μ p₀` exceeds the stick impulse `s* = |K⁻¹ v₀|` (`K = diag(7, k_z)`,
+/// `k_z = 6 − 2.5 μ_s` with the object ball pressed, else 6), with a band of 1e-4
+/// around each limit for the core's f32 rounding. Other models never refuse.
+pub fn may_refuse(params: &Params, impact: &Impact, model: Model) -> bool {
+    outside_domain(params, impact, model, -1e-4)
+}
+
+/// The declared domain's complement with the limits moved by the relative `slack`.
+fn outside_domain(params: &Params, impact: &Impact, model: Model, slack: f64) -> bool {
+    match model {
+        Model::KimGrip => {
+            params.mu() as f64 * params.mu_s() as f64 > 0.2 * (1.0 + slack)
+                || (params.cue_table_friction() > 0.0
+                    && params.mu() > 0.0
+                    && params.restitution() < 0.01)
+        }
+        Model::Kim => {
+            let (u, w, r) = (impact.velocity(), impact.spin(), params.radius() as f64);
+            let (v_y, v_z) = (-(u.y as f64) - r * w.z as f64, r * w.y as f64);
+            let k_z = if v_z > 0.0 {
+                6.0 - 2.5 * params.mu_s() as f64
+            } else {
+                6.0
+            };
+            let stick = (v_y / 7.0).hypot(v_z / k_z);
+            let slip = v_y.hypot(v_z);
+            // A slip within the f32 rounding of its inputs may be exact gearing to the
+            // core (answered without friction) or a gripping slip (refused): either.
+            let size = (u.y as f64).abs() + r * ((w.z as f64).abs() + (w.y as f64).abs());
+            if slip <= 4.0 * EPS32 * size {
+                return slack < 0.0;
+            }
+            let mu = params.friction_law().at(slip as f32) as f64;
+            let p0 = 0.5 * (1.0 + params.restitution() as f64) * u.x as f64;
+            // The f32 slip carries an absolute error of a few roundings of its inputs;
+            // relative to the slip it widens the band.
+            let band = slack.abs() + 8.0 * EPS32 * size / slip;
+            mu * p0 > stick * (1.0 + slack.signum() * band)
+        }
+        _ => false,
+    }
+}
+
+/// `collide`, where a refusal ([`cuesight::Error::OutsideValidity`]) is `None` and
+/// must be one the domain declares ([`may_refuse`]); an answer well outside the
+/// domain (1e-4 past a limit) and any other error panic.
+pub fn answer(params: &Params, impact: &Impact, model: Model) -> Option<Outcome> {
+    match collide(params, impact, model) {
+        Ok(_) if outside_domain(params, impact, model, 1e-4) => {
+            panic!("{model:?} answered outside its domain ({params:?} {impact:?})")
+        }
+        Ok(out) => Some(out),
+        Err(cuesight::Error::OutsideValidity { .. }) if may_refuse(params, impact, model) => None,
+        Err(e) => panic!("{model:?}: {e} ({params:?} {impact:?})"),
+    }
+}
