@@ -77,6 +77,14 @@ impl FrictionLaw {
         }
     }
 
+    /// The largest μ of the law: the constant, or `μ(0) = a + b`.
+    pub(crate) const fn largest(&self) -> f32 {
+        match *self {
+            Self::Constant(mu) => mu,
+            Self::SpeedDependent { a, b, .. } => a + b,
+        }
+    }
+
     /// `true` for a constant zero coefficient.
     pub fn is_frictionless(&self) -> bool {
         matches!(*self, Self::Constant(mu) if mu == 0.0)

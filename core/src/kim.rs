@@ -60,11 +60,14 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
     // Stick impulse s* = |K⁻¹ v₀| with K = diag(7, k_z), k_z = (2 + ν − μ_s)/ν with
     // the object ball pressed (the μ_s Kim applies), 6 otherwise; in units of `scale`.
     let k_z = (R::of(2.4) - mu_s) / R::of(crate::NU);
+    // Compared as squares in units of `scale`: the square root only on refusal.
     let (stick_y, stick_z) = (unit_y / R::of(7.0), unit_z / k_z);
-    let stick = R::sqrt(stick_y * stick_y + stick_z * stick_z) * scale;
-    if friction > stick {
+    let stick_squared = stick_y * stick_y + stick_z * stick_z;
+    let unit_friction = friction / scale;
+    if unit_friction * unit_friction > stick_squared {
         // +∞ (a stick impulse that underflows) reported as the largest f32.
-        let grip_index = R::min(friction / stick, R::of(f32::MAX)).to_f32();
+        let grip_index = unit_friction / R::sqrt(stick_squared);
+        let grip_index = R::min(grip_index, R::of(f32::MAX)).to_f32();
         return Err(crate::validity::outside(
             crate::validity::Reason::Grips,
             grip_index,

@@ -111,13 +111,14 @@ pub const KIM_GRIP_MIN_RESTITUTION: f32 = 0.01;
 /// scene outside it away from the fast path once, at construction
 /// (`Derived::kim_grip_mu`), and only the general path pays for the check.
 pub(crate) fn kim_grip(params: &Params) -> Result<()> {
-    let mu_mu_s = params.mu() * params.mu_s();
+    let mu = params.friction_law().largest();
+    let mu_mu_s = mu * params.mu_s();
     if mu_mu_s > KIM_GRIP_MAX_MU_MU_S {
         return Err(outside(Reason::TableFriction, mu_mu_s));
     }
     let restitution = params.restitution();
     // Without ball–ball friction (μ = 0) nothing presses the cue ball: μ_ct never acts.
-    let cue_table = params.cue_table_friction() > 0.0 && params.mu() > 0.0;
+    let cue_table = params.cue_table_friction() > 0.0 && mu > 0.0;
     if cue_table && restitution < KIM_GRIP_MIN_RESTITUTION {
         return Err(outside(Reason::NearlyPlastic, restitution));
     }
