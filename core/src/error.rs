@@ -194,7 +194,7 @@ pub enum Error {
     /// observed on the test grids; reported rather than returned as NaN.
     NumericalFailure,
     /// The model asked for was left out of this build ([`crate::Model::built`]; the
-    /// `seed-exact` feature), as on the device.
+    /// `seed-exact` and `kim` features), as on the device.
     ModelLeftOut,
     /// A table simulation had not ended (every ball at rest or pocketed) after its
     /// event limit or time limit ([`crate::sim`]).

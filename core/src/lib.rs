@@ -37,6 +37,7 @@ mod friction;
 pub mod guidance;
 mod ideal;
 mod impact;
+#[cfg(feature = "kim")]
 mod kim;
 mod kim_grip;
 pub mod math;

@@ -75,10 +75,15 @@ impl Model {
     ];
 
     /// Whether this build evaluates the model: all but `SeedExact` without the
-    /// `seed-exact` feature, which [`crate::collide`] answers with
-    /// [`Error::ModelLeftOut`](crate::Error::ModelLeftOut).
+    /// `seed-exact` feature and `Kim` without the `kim` feature, which
+    /// [`crate::collide`] answers with
+    /// [`Error::ModelLeftOut`](crate::Error::ModelLeftOut) (the firmware leaves both out).
     pub const fn built(self) -> bool {
-        !matches!(self, Model::SeedExact) || cfg!(feature = "seed-exact")
+        match self {
+            Model::SeedExact => cfg!(feature = "seed-exact"),
+            Model::Kim => cfg!(feature = "kim"),
+            _ => true,
+        }
     }
 
     /// Lower-case, hyphenated name (`ideal`, `kim`, `kim-grip`, `seed-exact`, `exact`).
@@ -147,7 +152,10 @@ pub fn collide_f64(params: &Params, impact: &Impact, model: Model) -> Result<Out
 pub fn collide_in<R: Real>(params: &Params, impact: &Impact, model: Model) -> Result<Outcome> {
     match model {
         Model::Ideal => crate::ideal::collide::<R>(params, impact),
+        #[cfg(feature = "kim")]
         Model::Kim => crate::kim::collide::<R>(params, impact),
+        #[cfg(not(feature = "kim"))]
+        Model::Kim => Err(crate::Error::ModelLeftOut),
         Model::KimGrip => crate::kim_grip::collide::<R>(params, impact),
         #[cfg(feature = "seed-exact")]
         Model::SeedExact => crate::seed_exact::collide::<R>(params, impact),

@@ -101,7 +101,8 @@ const BUILT_MODELS: usize = {
 
 /// Runs every shot with every model, logs the outcomes and returns how many failed.
 pub fn run_all() -> u32 {
-    // The image leaves `SeedExact` out (`Cargo.toml`): every other model is checked.
+    // The image leaves `SeedExact` and `Kim` out (`Cargo.toml`): every other model is
+    // checked.
     let mut failures = 0;
     for shot in &SHOTS {
         let impact = match shot.impact() {

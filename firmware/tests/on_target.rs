@@ -146,10 +146,11 @@ mod tests {
         const THROW_DEG: f32 = 1.259_898_3;
         let impact = Impact::from_cut_degrees(2.0, 30.0, [0.0, -70.0, 0.0]);
         let impact = defmt::unwrap!(impact.ok());
-        // The firmware leaves `SeedExact` out (firmware/Cargo.toml): a typed refusal.
-        defmt::assert!(
-            collide(&Params::POOL, &impact, Model::SeedExact) == Err(Error::ModelLeftOut)
-        );
+        // The firmware leaves `SeedExact` and `Kim` out (firmware/Cargo.toml): typed
+        // refusals.
+        for model in [Model::SeedExact, Model::Kim] {
+            defmt::assert!(collide(&Params::POOL, &impact, model) == Err(Error::ModelLeftOut));
+        }
         for model in [
             Model::KimGrip,
             Model::Exact,

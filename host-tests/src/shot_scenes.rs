@@ -38,7 +38,9 @@ const PRESETS: [Preset; 3] = [
     },
 ];
 
-const MODELS: [&str; 5] = ["ideal", "kim", "kim-grip", "exact", "auto"];
+/// The models a body names: those the firmware serves (it leaves `kim` and
+/// `seed-exact` out, firmware/Cargo.toml), so that its answers can equal the host's.
+const MODELS: [&str; 4] = ["ideal", "kim-grip", "exact", "auto"];
 
 /// A random `shot` body: a preset table, 1–15 object balls placed apart, a stroke,
 /// every contact parameter, and either a pocket to solve for or an aim near ball 1

@@ -1330,13 +1330,13 @@ fn window_chunk() -> usize {
         .expect("1 divides")
 }
 
-/// The core's models the device serves: all but `SeedExact`, which the firmware leaves
-/// out (firmware/Cargo.toml; it answers `invalid: model_left_out`, the host session,
-/// built with it, would answer the collision).
+/// The core's models the device serves: all but `SeedExact` and `Kim`, which the
+/// firmware leaves out (firmware/Cargo.toml; it answers `invalid: model_left_out`, the
+/// host session, built with them, would answer the collision).
 fn core_models() -> Vec<ModelName> {
     ModelName::ALL
         .into_iter()
-        .filter(|m| m.core().is_some() && *m != ModelName::SeedExact)
+        .filter(|m| m.core().is_some() && !matches!(m, ModelName::SeedExact | ModelName::Kim))
         .collect()
 }
 
