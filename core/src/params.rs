@@ -65,6 +65,7 @@ impl Derived {
                 if mu > 0.0
                     && mu <= 1.0
                     && mu_ct == 0.0
+                    && mu <= crate::validity::KIM_GRIP_MAX_MU
                     && mu * mu_s <= crate::validity::KIM_GRIP_MAX_MU_MU_S =>
             {
                 mu

@@ -996,8 +996,7 @@ fn hopping_ball_lands() {
                     let stroke = Stroke::new(8.0, tip, [1.0, 0.0]).unwrap();
                     for model in [Model::KimGrip, Model::Exact] {
                         setup.model = model;
-                        let outside = setup.params.mu() * setup.params.mu_s()
-                            > cuesight::validity::KIM_GRIP_MAX_MU_MU_S;
+                        let outside = cuesight::validity::kim_grip(&setup.params).is_err();
                         if model == Model::KimGrip && outside {
                             // Past KimGrip's validity domain: the shot is refused, typed.
                             let refused = play(&s, &stroke, &setup);

@@ -40,7 +40,7 @@ use cuesight::shot::{play, ShotSetup, Stroke};
 use cuesight::strike::{Cue, TipOffset};
 use cuesight::table::{BallSet, Scene};
 use cuesight::travel::{Cloth, Motion};
-use cuesight::validity::Reason;
+use cuesight::validity::{kim_grip, Reason};
 use cuesight::{FrictionLaw, Model, Params, Vec3};
 use cuesight_figures::thousands;
 use proptest::prelude::*;
@@ -312,7 +312,7 @@ fn check_shot(case: &ShotCase, fig: &mut Figures) -> Result<(), TestCaseError> {
     let shot = match play(scene, stroke, setup) {
         Ok(shot) => shot,
         // Refusals of the validity domain reach the caller typed: Kim where its
-        // contact grips (gripping index above 1), KimGrip past μ·μ_s = 0.2.
+        // contact grips (gripping index above 1), KimGrip outside its parameters' domain.
         Err(cuesight::Error::OutsideValidity {
             reason: Reason::Grips,
             value,
@@ -321,27 +321,8 @@ fn check_shot(case: &ShotCase, fig: &mut Figures) -> Result<(), TestCaseError> {
             fig.refused += 1;
             return Ok(());
         }
-        Err(cuesight::Error::OutsideValidity {
-            reason: Reason::TableFriction,
-            value,
-            ..
-        }) if setup.model == Model::KimGrip
-            && value == setup.params.mu() * setup.params.mu_s()
-            && value > cuesight::validity::KIM_GRIP_MAX_MU_MU_S =>
-        {
-            fig.refused += 1;
-            return Ok(());
-        }
-        Err(cuesight::Error::OutsideValidity {
-            reason: Reason::NearlyPlastic,
-            value,
-            ..
-        }) if setup.model == Model::KimGrip
-            && setup.params.cue_table_friction() > 0.0
-            && setup.params.mu() > 0.0
-            && value == setup.params.restitution()
-            && value < cuesight::validity::KIM_GRIP_MIN_RESTITUTION =>
-        {
+        // KimGrip's refusal is its parameters' (`validity::kim_grip`).
+        Err(e) if setup.model == Model::KimGrip && kim_grip(&setup.params) == Err(e) => {
             fig.refused += 1;
             return Ok(());
         }

@@ -115,9 +115,12 @@ fn kim_grip_is_continuous_across_the_grip_boundary() {
         let impact = s.impact();
         let regime =
             |mu: f32| collide(&s.params().with_mu(mu).unwrap(), &impact, Model::KimGrip).unwrap();
-        // μ up to 1 or to the edge of KimGrip's validity domain, μ·μ_s = 0.2.
+        // μ up to the edge of KimGrip's validity domain: μ ≤ 0.15, μ·μ_s ≤ 0.08.
         let (mu_s, limit) = (s.params().mu_s(), cuesight::validity::KIM_GRIP_MAX_MU_MU_S);
-        let (mut lo, mut hi) = (1e-4f32, (limit / mu_s).min(1.0));
+        let (mut lo, mut hi) = (
+            1e-4f32,
+            (limit / mu_s).min(cuesight::validity::KIM_GRIP_MAX_MU),
+        );
         while hi * mu_s > limit {
             hi = f32::from_bits(hi.to_bits() - 1);
         }

@@ -70,12 +70,12 @@ fn reference(params: &Params, impact: &Impact) -> cuesight_host::reference::Refe
     .unwrap()
 }
 
-fn grid_with(law: FrictionLaw, seed: u64) -> Summary {
+fn grid_with(law: FrictionLaw, seed: u64, model: Model) -> Summary {
     let grid = scenes(seed, 3000);
     Summary::of(grid.iter().enumerate().map(|(i, s)| {
         let params = s.params().with_friction_law(law);
         let impact = s.impact();
-        let out = collide(&params, &impact, Model::KimGrip).unwrap();
+        let out = collide(&params, &impact, model).unwrap();
         (i, scene_error(s, &out, &reference(&params, &impact)))
     }))
 }
@@ -83,16 +83,21 @@ fn grid_with(law: FrictionLaw, seed: u64) -> Summary {
 /// Same tolerances as the constant-μ grid: 0.5 % velocity, 1 % R ω, 0.25° throw.
 #[test]
 fn kim_grip_tracks_the_reference_with_speed_dependent_friction() {
-    let marlow = grid_with(FrictionLaw::MARLOW, 31);
-    let other = grid_with(
-        FrictionLaw::speed_dependent(0.016, 0.219, 0.691).unwrap(),
-        32,
+    let marlow = grid_with(FrictionLaw::MARLOW, 31, Model::KimGrip);
+    // The second fit's μ(0) = 0.235 is outside KimGrip's validity domain (μ ≤ 0.15):
+    // refused, typed; Exact answers it.
+    let second = FrictionLaw::speed_dependent(0.016, 0.219, 0.691).unwrap();
+    let refusal = cuesight::validity::kim_grip(&Params::POOL.with_friction_law(second));
+    assert!(
+        matches!(refusal, Err(cuesight::Error::OutsideValidity { reason: cuesight::validity::Reason::Friction, value, .. }) if (value - 0.235).abs() < 1e-6),
+        "{refusal:?}"
     );
-    println!("Marlow fit (a 9.951e-3, b 0.108, c 1.088):   {marlow}");
-    println!("second fit (a 0.016, b 0.219, c 0.691):      {other}");
+    let other = grid_with(second, 32, Model::Exact);
+    println!("Marlow fit (a 9.951e-3, b 0.108, c 1.088), KimGrip: {marlow}");
+    println!("second fit (a 0.016, b 0.219, c 0.691), Exact:     {other}");
     for (key, s) in [
         ("physics-speed-dependent-marlow", &marlow),
-        ("physics-speed-dependent-second-fit", &other),
+        ("physics-speed-dependent-second-fit-exact", &other),
     ] {
         for (key, value) in s.figures(key, [3, 3, 3], [3, 3, 3]) {
             cuesight_figures::record!(&key, "{value}");

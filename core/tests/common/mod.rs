@@ -526,7 +526,8 @@ pub fn energy_rounding(case: &Case, model: Model) -> f64 {
 
 /// Whether `model` may refuse the scene under its declared validity domain
 /// (`cuesight::validity`), recomputed here in f64 from the inputs: `KimGrip` outside
-/// `μ·μ_s ≤ 0.2` or, with `μ_ct > 0` and `μ > 0`, below e* = 0.01; `Kim` where its friction
+/// `μ ≤ 0.15`, `μ·μ_s ≤ 0.08`, `μ·μ_ct ≤ 0.01` or, with `μ_ct > 0` and `μ > 0`, below
+/// e* = 0.01; `Kim` where its friction
 /// impulse `μ p₀` exceeds the stick impulse `s* = |K⁻¹ v₀|` (`K = diag(7, k_z)`,
 /// `k_z = 6 − 2.5 μ_s` with the object ball pressed, else 6), with a band of 1e-4
 /// around each limit for the core's f32 rounding. Other models never refuse.
@@ -538,7 +539,10 @@ pub fn may_refuse(params: &Params, impact: &Impact, model: Model) -> bool {
 fn outside_domain(params: &Params, impact: &Impact, model: Model, slack: f64) -> bool {
     match model {
         Model::KimGrip => {
-            params.mu() as f64 * params.mu_s() as f64 > 0.2 * (1.0 + slack)
+            let mu = params.mu() as f64;
+            mu > 0.15 * (1.0 + slack)
+                || mu * params.mu_s() as f64 > 0.08 * (1.0 + slack)
+                || mu * params.cue_table_friction() as f64 > 0.01 * (1.0 + slack)
                 || (params.cue_table_friction() > 0.0
                     && params.mu() > 0.0
                     && params.restitution() < 0.01)
