@@ -249,7 +249,7 @@ impl fmt::Display for Error {
                 f.write_str("internal numerical failure (non-finite result)")
             }
             Error::ModelLeftOut => {
-                f.write_str("this model was left out of this build (cargo feature `seed-exact`)")
+                f.write_str("this model was left out of this build (cargo features `seed-exact`, `kim`)")
             }
             Error::Unfinished { events, time } => write!(
                 f,
