@@ -93,28 +93,30 @@ fn json_has_every_key() {
     assert!(v["throw_deg"].as_f64().unwrap() > 0.0);
 }
 
+/// A stun cut with every contact option set: Kim's contact grips here (gripping index
+/// 1.10) unless spin is added.
+const STUN_CUT: [&str; 14] = [
+    "--speed",
+    "1.5",
+    "--cut",
+    "-20",
+    "--mu",
+    "0.06",
+    "--restitution",
+    "0.9",
+    "--mu-s",
+    "0.2",
+    "--radius",
+    "0.03",
+    "--mass",
+    "0.2",
+];
+
 #[test]
 fn options_reach_the_model() {
-    let v = json(&[
-        "--speed",
-        "1.5",
-        "--cut",
-        "-20",
-        "--mu",
-        "0.06",
-        "--restitution",
-        "0.9",
-        "--mu-s",
-        "0.2",
-        "--radius",
-        "0.03",
-        "--mass",
-        "0.2",
-        "--spin",
-        "0,60,0",
-        "--model",
-        "kim",
-    ]);
+    let mut args = STUN_CUT.to_vec();
+    args.extend_from_slice(&["--spin", "0,60,0", "--model", "kim"]);
+    let v = json(&args);
     // Topspin keeps the contact sliding, inside Kim's validity domain.
     assert_eq!(v["model"], "kim");
     let input = &v["input"];
@@ -254,18 +256,7 @@ fn scenes_outside_a_models_domain_are_refused() {
         assert_eq!(json(&args)["model"], model);
     }
     // A stun cut at μ 0.06 grips in Kim's first order (gripping index 1.10).
-    let stun = [
-        "--speed",
-        "1.5",
-        "--cut",
-        "-20",
-        "--mu",
-        "0.06",
-        "--restitution",
-        "0.9",
-    ];
-    let mut args = stun.to_vec();
-    args.extend_from_slice(&["--mu-s", "0.2", "--radius", "0.03", "--mass", "0.2"]);
+    let mut args = STUN_CUT.to_vec();
     args.extend_from_slice(&["--model", "kim"]);
     let line = rejected(&args, 1);
     assert!(

@@ -2,9 +2,9 @@
 //! and as accurate as its documentation says, and the typed refusal outside.
 //!
 //! A model that leaves its domain does not answer: [`crate::collide`] returns
-//! [`Error::OutsideValidity`](crate::Error::OutsideValidity) naming the model, the
-//! [`Reason`] and the scene's value of the quantity that crossed the limit. Every limit
-//! is a measurement, cited below (`docs/physics.md` §8 has the tables):
+//! [`Error::OutsideValidity`] naming the model, the [`Reason`] and the scene's value of
+//! the quantity that crossed the limit. Every limit is a measurement, cited below
+//! (`docs/physics.md` §8a has the table):
 //!
 //! | model | domain | outside it |
 //! |---|---|---|
@@ -39,7 +39,7 @@ use crate::error::{Error, Result};
 use crate::params::Params;
 
 /// A collision model without its parameters, as named by
-/// [`Error::OutsideValidity`](crate::Error::OutsideValidity).
+/// [`Error::OutsideValidity`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
