@@ -6,7 +6,7 @@ values raise ValueError with the CLI's message."""
 from __future__ import annotations
 
 import json
-from typing import Any, Dict, List
+from typing import Any, Dict, List, Optional
 
 import numpy as np
 import pytest
@@ -83,8 +83,25 @@ def cli_json(cli, kwargs: Dict[str, Any]) -> Dict[str, Any]:
     return json.loads(out)
 
 
+def cli_refusal(cli, kwargs: Dict[str, Any]) -> Optional[str]:
+    """The CLI's message when the model refuses the scene outside its validity domain
+    (``kim`` where the contact grips, ``kim-grip`` outside its parameters' domain), else
+    None."""
+    code, _, err = cli(cli_args(kwargs))
+    if code == 1 and " is valid only where " in err:
+        return err.strip().removeprefix("error: ")
+    return None
+
+
 @pytest.mark.parametrize("kwargs", CASES + RANDOM + REFERENCE, ids=lambda k: repr(k))
 def test_collide_is_the_clis(cli, kwargs):
+    refusal = cli_refusal(cli, kwargs)
+    if refusal is not None:
+        # The same refusal, word for word.
+        with pytest.raises(ValueError) as raised:
+            cuesight.collide(**kwargs)
+        assert str(raised.value) == refusal
+        return
     theirs = cli_json(cli, kwargs)
     ours = cuesight.collide(**kwargs).to_dict()
     assert_same(ours, theirs)
@@ -126,8 +143,13 @@ def test_collide_many_rows_are_the_clis(cli):
                 kwargs["roll"] = True
             elif kind == "tip":
                 kwargs["tip"] = [c["tip"] for c in sub]
-            many = cuesight.collide_many(**kwargs, model=model)
+            many = cuesight.collide_many(**kwargs, model=model, errors="nan")
             for j, case in enumerate(sub):
+                # A row the CLI refuses (outside the model's validity domain) is invalid.
+                if cli_refusal(cli, case) is not None:
+                    assert not many.valid[j], f"{model} {kind} {case}"
+                    continue
+                assert many.valid[j], f"{model} {kind} {case}"
                 theirs = cli_json(cli, case)
                 row = {
                     "regime": cuesight.REGIMES[many.regime[j]],
