@@ -73,8 +73,22 @@ pub fn run(data: &[u8]) -> Report {
                 Err(error) => {
                     let bad_tolerance = matches!(model, Model::Auto { .. })
                         && error.field() == Some(Field::Tolerance);
+                    // A refusal outside the model's declared validity domain: Kim where
+                    // its contact grips (index above 1), KimGrip its parameters' refusal.
+                    let declared = match error {
+                        cuesight::Error::OutsideValidity {
+                            reason: cuesight::validity::Reason::Grips,
+                            value,
+                            ..
+                        } => model == Model::Kim && value > 1.0,
+                        cuesight::Error::OutsideValidity { .. } => {
+                            model == Model::KimGrip
+                                && cuesight::validity::kim_grip(&params) == Err(error)
+                        }
+                        _ => false,
+                    };
                     assert!(
-                        !validated || bad_tolerance,
+                        !validated || bad_tolerance || declared,
                         "{what}: {error} for valid input {params:?}, {impact:?}"
                     );
                 }
