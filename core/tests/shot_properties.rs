@@ -317,7 +317,7 @@ fn check_shot(case: &ShotCase, fig: &mut Figures) -> Result<(), TestCaseError> {
             reason: Reason::Grips,
             value,
             ..
-        }) if setup.model == Model::Kim && value > 1.0 => {
+        }) if setup.model == Model::Kim && value >= 1.0 => {
             fig.refused += 1;
             return Ok(());
         }

@@ -80,7 +80,7 @@ pub fn run(data: &[u8]) -> Report {
                             reason: cuesight::validity::Reason::Grips,
                             value,
                             ..
-                        } => model == Model::Kim && value > 1.0,
+                        } => model == Model::Kim && value >= 1.0, // rounded to f32
                         cuesight::Error::OutsideValidity { .. } => {
                             model == Model::KimGrip
                                 && cuesight::validity::kim_grip(&params) == Err(error)

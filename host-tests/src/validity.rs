@@ -26,7 +26,7 @@ pub fn declared(params: &Params, model: Model, error: &Error) -> bool {
         (Model::Kim, Tier::Kim) | (Model::KimGrip, Tier::KimGrip)
     );
     let past = match reason {
-        Reason::Grips => value > 1.0,
+        Reason::Grips => value >= 1.0, // an index just above 1 may round to 1.0 in f32
         Reason::Friction => value == params.mu() && value > KIM_GRIP_MAX_MU,
         Reason::TableFriction => {
             value == params.mu() * params.mu_s() && value > KIM_GRIP_MAX_MU_MU_S
