@@ -189,7 +189,14 @@ fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
     };
     let pressing_span = R::min(normal, grip_normal);
     let (table, cue_table_x, cue_table_y) = if object_pressed {
-        (table_rate * pressing_span, R::ZERO, R::ZERO)
+        // Coulomb's cone at the object ball's table contact: its friction impulse is at
+        // most μ_s times the table's normal impulse on it, which (per unit mass, m/s) is
+        // the downward ball–ball friction −j_z (j_z ≤ 0 here; the max takes rounding
+        // out). The rate ρ, fixed from the first-order budget, can put ρ·min(p, p*)
+        // above that (issue 16 item 3: the invariants suite's object-ball table cone);
+        // the cone caps it.
+        let cone = R::of(params.mu_s()) * R::max(-j_z, R::ZERO);
+        (R::min(table_rate * pressing_span, cone), R::ZERO, R::ZERO)
     } else {
         // Pressing impulse on the cue ball = the upward friction impulse on the object.
         let pressing = R::max(j_z, R::ZERO);
@@ -224,12 +231,12 @@ pub(crate) fn initial_slip<R: Real>(params: &Params, impact: &Impact) -> (R, R) 
 /// Split the table friction `table` (m/s) on the pressed object ball along its
 /// table-contact slip `c = V + Ω × (−R ẑ)` (first-principles Coulomb direction; the seed's
 /// eq. (7) takes `c ∥ x̂`). At the end of the pressing span every impulse has grown
-/// roughly in proportion, so the final `c` gives the mean direction:
-/// `c_x = p − X − (j_z + X)/ν` (the spin `Ω_y` adds `−R Ω_y`), `c_y = j_y`. Returns the
-/// `−x` magnitude and the `y` component of the table impulse.
+/// roughly in proportion, so the final `c` gives the mean direction, that of the slip
+/// the ball–ball impulses alone give (see [`table_contact_slip`]). Returns the `−x`
+/// magnitude and the `y` component of the table impulse.
 #[inline(always)]
 fn table_friction_components<R: Real>(table: R, span: R, j_y: R, j_z: R) -> (R, R) {
-    let (slip_x, slip_y) = table_contact_slip(table, span, j_y, j_z);
+    let (slip_x, slip_y) = table_contact_slip(span, j_y, j_z);
     let length = R::sqrt(slip_x * slip_x + slip_y * slip_y);
     if length > R::ZERO {
         let scale = table / length;
@@ -240,11 +247,21 @@ fn table_friction_components<R: Real>(table: R, span: R, j_y: R, j_z: R) -> (R, 
     }
 }
 
-/// The object ball's table-contact slip `(c_x, c_y)` (m/s) at the end of the pressing
-/// span (see [`table_friction_components`]), for table friction `table` (m/s).
+/// The direction `(c_x, c_y)` (m/s) of the object ball's table-contact slip at the end of
+/// the pressing span (see [`table_friction_components`]): that of the slip the ball–ball
+/// impulses alone give, `c_free = (p − j_z/ν, j_y)` per unit mass (the normal impulse `p`
+/// along x; the friction `j_z`, acting at `−R x̂`, spins the ball by `Ω_y = j_z/(ν R)`,
+/// which adds `−R Ω_y`; `j_y` moves it along y and spins it about z only). The table
+/// friction `T` (m/s, at `−R ẑ`) moves the contact by `(1 + 1/ν) T` (its impulse plus the
+/// spin it gives, `I = ν m R²`), and Coulomb's law directs it against the slip,
+/// `T = −|T| ĉ`, so while the contact slides (`(1 + 1/ν)|T| < |c_free|`, as the model
+/// assumes) `c = c_free − (1 + 1/ν)|T| ĉ` stays parallel to `c_free`. Before issue 16
+/// item 3 this took `c_x = p − X − (j_z + X)/ν` with `X` the friction's whole size but
+/// `c_y = j_y`, as if all of `T` acted along x: that turned the direction towards y, and
+/// reversed `c_x` where `(1 + 1/ν) X` exceeded `c_free`'s x component.
 #[inline(always)]
-fn table_contact_slip<R: Real>(table: R, span: R, j_y: R, j_z: R) -> (R, R) {
-    (span - table - (j_z + table) / nu::<R>(), j_y)
+fn table_contact_slip<R: Real>(span: R, j_y: R, j_z: R) -> (R, R) {
+    (span - j_z / nu::<R>(), j_y)
 }
 
 /// The initial tangential slip and the quantities derived from it. The slip

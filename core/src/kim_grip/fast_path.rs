@@ -169,8 +169,12 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
         // slip of zero length (or one whose square underflows) makes `scale` infinite
         // or NaN and so `table` infinite or NaN (`∞ · 0` included), which the guard
         // below sends to the general path, whose branch handles it.
-        let size = table_rate * span;
-        let (slip_x, slip_y) = table_contact_slip(size, span, j_y, j_z);
+        // The size capped by Coulomb's cone, μ_s times the table's normal impulse −j_z
+        // (m/s; see the general path; j_z < 0 here, the friction pressing the object
+        // ball down); the direction is the table-contact slip of the ball–ball impulses
+        // alone (`table_contact_slip`).
+        let size = R::min(table_rate * span, -(mu_s * j_z));
+        let (slip_x, slip_y) = table_contact_slip(span, j_y, j_z);
         let scale = size / R::sqrt(slip_x * slip_x + slip_y * slip_y);
         (scale * slip_x, -scale * slip_y, size)
     } else {
