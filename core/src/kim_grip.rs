@@ -259,9 +259,11 @@ fn table_friction_components<R: Real>(table: R, span: R, j_y: R, j_z: R) -> (R, 
 /// item 3 this took `c_x = p − X − (j_z + X)/ν` with `X` the friction's whole size but
 /// `c_y = j_y`, as if all of `T` acted along x: that turned the direction towards y, and
 /// reversed `c_x` where `(1 + 1/ν) X` exceeded `c_free`'s x component.
+/// `1/ν = 5/2` is exact in `R` (`nu()` is 2/5 rounded); both components are `≥ 0`
+/// along x (`p ≥ 0`, `j_z ≤ 0` with the object ball pressed), so `c_x ≥ 0` exactly.
 #[inline(always)]
 fn table_contact_slip<R: Real>(span: R, j_y: R, j_z: R) -> (R, R) {
-    (span - j_z / nu::<R>(), j_y)
+    (span - j_z * R::of(2.5), j_y)
 }
 
 /// The initial tangential slip and the quantities derived from it. The slip
