@@ -34,19 +34,27 @@
 //!   specific friction impulse `j` on the object ball and `−j` on the cue ball change the
 //!   tangential slip by `7 j` along `y`, so while the slip falls linearly from `v₀` they
 //!   do work `−j (v₀ − 7 j / 2)` per unit mass, positive once `7 j > 2 v₀`.
-//! * `KimGrip`: energy, the approach and the other invariants wherever it answers; its
-//!   validity domain refuses μ > 0.15, μ·μ_s > 0.08, μ·μ_ct > 0.01 and, with μ_ct > 0,
-//!   e* < 0.01 (about 88 % of this accepted domain, whose μ spans [0, 1]). Before that
-//!   fence (10⁶ set): energy grew in 22 scenes from μ·μ_s = 0.702 (up to ×1.19), and the
-//!   balls ended moving into each other with cue-ball/table friction at e* ≤ 0.0091
-//!   (4 scenes; low-e* sets: 15 and 36, up to 5.6e-4 U). Left: the object ball's table
-//!   friction exceeds μ_s times its table normal impulse in 15.5 % of scenes (10⁶ set:
-//!   155,350, up to ×1.25 the cone and 3.7e-2 M U, from μ·μ_s = 0.0007; the README's
-//!   worked example is 1.2 % over), every one with topspin pressing the object ball:
-//!   asserted only where nothing presses it (ω_y ≤ 0) or μ_s = 0.
-//! * `Auto(1e-3)`, `Auto(1e-2)`: what the tiers they pick break: `KimGrip`'s table cone
-//!   (10⁶ set: 262 and 152 scenes, up to ×1.08 the cone, 2.2e-4 and 9.3e-4 M U):
-//!   asserted where ω_y ≤ 0 or μ_s = 0; every other invariant everywhere.
+//! * `KimGrip`: every invariant wherever it answers; its validity domain refuses
+//!   μ > 0.15, μ·μ_s > 0.08, μ·μ_ct > 0.01 and, with μ_ct > 0, e* < 0.01 (about 88 %
+//!   of this accepted domain, whose μ spans [0, 1]). Before that fence (10⁶ set): energy
+//!   grew in 22 scenes from μ·μ_s = 0.702 (up to ×1.19), and the balls ended moving
+//!   into each other with cue-ball/table friction at e* ≤ 0.0091 (4 scenes; low-e*
+//!   sets: 15 and 36, up to 5.6e-4 U). Until the commit after cc36ec9 the object ball's
+//!   table friction could exceed μ_s times its table normal impulse, every time with
+//!   topspin pressing the object ball (10⁶ set, before the fence: 155,350 scenes, up to
+//!   ×1.25 the cone and 3.7e-2 M U, from μ·μ_s = 0.0007; at cc36ec9, 100,000 scenes of
+//!   seed 16: 8,968, up to ×1.23 and 6.2e-3 M U; the README's worked example was 1.2 %
+//!   over), and was asserted only where nothing pressed it (ω_y ≤ 0) or μ_s = 0: its
+//!   size was the rate ρ, fixed from the first-order friction budget, times the
+//!   pressing span. It is now capped by the cone `μ_s (−j_z)` and directed along the
+//!   table-contact slip of the ball–ball impulses alone (core/src/kim_grip.rs): no
+//!   violation in the 10⁶ set (measured under an earlier, wider fence, μ·μ_s ≤ 0.2)
+//!   nor in the 100,000 of seed 16.
+//! * `Auto(1e-3)`, `Auto(1e-2)`: every invariant everywhere. Until the commit after
+//!   cc36ec9 they broke what the tiers they pick broke, `KimGrip`'s table cone (10⁶
+//!   set, before the fence: 262 and 152 scenes, up to ×1.08 the cone, 2.2e-4 and
+//!   9.3e-4 M U; at cc36ec9, seed 16: 27 and 40, up to ×1.04 and ×1.06), asserted only
+//!   where ω_y ≤ 0 or μ_s = 0; none now.
 //!
 //! Plus: the checks themselves on hand-built outcomes (each invariant broken alone, and
 //! the tolerance edges), and the cases issue 16 quotes as regression cases.
