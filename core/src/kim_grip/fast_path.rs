@@ -105,7 +105,8 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
     let approach = R::of(impact.velocity().x);
     // The first-order normal impulse (1+e)a/2 (no table friction).
     let first_normal = half_one_plus_restitution * approach;
-    let (table_rate, normal, slides) = if !OBJECT_PRESSED {
+    // `certain`: the contact grips whatever the table friction ((1+e)a/2 ≥ p*).
+    let (table_rate, normal, slides, certain) = if !OBJECT_PRESSED {
         let (normal, slides) = final_normal_impulse::<R, false>(
             approach,
             restitution,
@@ -113,7 +114,7 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
             R::ZERO,
             grip_normal,
         );
-        (R::ZERO, normal, slides)
+        (R::ZERO, normal, slides, false)
     } else {
         // ρ = μ μ_s |ĵ_z| (see `pressing_share` in the parent module): |ĵ_z| is v̂₀'s
         // z component at f = 0 and the stick impulse's at f = 1, interpolated at the
@@ -131,7 +132,7 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
             let relief = R::ONE - R::of(0.5) * table_rate;
             let normal =
                 gripped_normal_impulse::<R, false>(approach, restitution, relief, grip_normal);
-            (table_rate, normal, false)
+            (table_rate, normal, false, true)
         } else {
             let start = slip_z / slip_norm;
             let fraction = first_normal / grip_normal;
@@ -143,7 +144,7 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
                 table_rate,
                 grip_normal,
             );
-            (table_rate, normal, slides)
+            (table_rate, normal, slides, false)
         }
     };
     // The span over which the object ball is pressed is min(p, p*): the branch
@@ -174,7 +175,13 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
         // (m/s; see the general path; j_z < 0 here, the friction pressing the object
         // ball down); the direction is the table-contact slip of the ball–ball impulses
         // alone (`table_contact_slip`).
-        let size = R::min(table_rate * span, -(mu_s * j_z));
+        let size = if certain {
+            // ρ = μ μ_s |ĵ_stick,z| over the span p* = s*/μ: ρ p* = μ_s |j_stick,z|, the
+            // cone μ_s (−j_z) itself (j_z = −|j_stick,z|) up to rounding, so no min.
+            mu_s * stick_z_flipped
+        } else {
+            R::min(table_rate * span, -(mu_s * j_z))
+        };
         let (slip_x, slip_y) = table_contact_slip(span, j_y, j_z);
         let scale = size / R::sqrt(slip_x * slip_x + slip_y * slip_y);
         (scale * slip_x, -scale * slip_y, size)
