@@ -33,7 +33,10 @@
 //! `TangentialSlip::pressing_share`), and stops when the contact grips at `p* = s*/μ`. With
 //! `v_x(p) = −a + 2p − ρ min(p, p*)`, the compression end and Stronge's energetic
 //! restitution (`W_restitution = e*² |W_compression|`, seed eq. (37)) give `p_f` in
-//! closed form on each linear piece.
+//! closed form on each linear piece. The table friction impulse itself, `ρ min(p, p*)`,
+//! is capped by its Coulomb cone `μ_s (−j_z)` (the table's normal impulse on the object
+//! ball is the downward friction `−j_z`; the first-order rate can overshoot it) and
+//! directed along the table-contact slip of the ball–ball impulses alone.
 
 use crate::error::Result;
 use crate::friction::FrictionLaw;
