@@ -46,6 +46,8 @@ use crate::params::Params;
 use crate::real::Real;
 
 mod fast_path;
+#[cfg(feature = "speed-path")]
+mod speed_path;
 pub(crate) use fast_path::MIN_SLIP_SQUARED as FAST_PATH_MIN_SLIP_SQUARED;
 
 /// Largest `|v₀|²` ((m/s)²) treated as exact gearing, a slip of 1 pm/s: the fast
@@ -72,8 +74,25 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
     // `Params` it does not apply to included (their minimum slip is +∞).
     match fast_path::collide::<R>(params, impact) {
         Some(outcome) => Ok(outcome),
+        #[cfg(feature = "speed-path")]
+        None => beyond_fast_path::<R>(params, impact),
+        #[cfg(not(feature = "speed-path"))]
         None => general::<R>(params, impact),
     }
+}
+
+/// Every scene the constant-μ fast path declines: TP A.14's speed-dependent μ(v) in
+/// closed form (`speed_path`, f32 only), else the general path. Not inlined, so that
+/// the constant-μ fast path's code stays as it was without it.
+#[cfg(feature = "speed-path")]
+#[inline(never)]
+fn beyond_fast_path<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
+    if R::SINGLE {
+        if let Some(outcome) = speed_path::collide(params, impact) {
+            return Ok(outcome);
+        }
+    }
+    general::<R>(params, impact)
 }
 
 /// Every scene of the validity domain (`crate::validity`; outside it the typed

@@ -28,6 +28,11 @@ use micromath::F32Ext as _;
 #[cfg_attr(feature = "micromath", allow(dead_code))]
 pub(crate) mod accurate;
 
+// Short polynomial `e^{−x}`, `ln` and `(1 − e^{−x})/x` for KimGrip's speed-dependent
+// friction fast path (f32 only; the core feature `speed-path`).
+#[cfg(feature = "speed-path")]
+pub(crate) mod fast;
+
 /// Square root of `x` (`x ≥ 0`; returns NaN for negative input like IEEE `sqrt`).
 #[inline(always)]
 pub fn sqrt(x: f32) -> f32 {

@@ -45,6 +45,25 @@ pub(crate) struct Derived {
     pub pressed_boundary: f32,
     /// `1/(ν R)` (1/m): spin change per unit specific impulse at the contact.
     pub spin_per_impulse: f32,
+    /// The speed-dependent law `μ(v) = a + b e^{−cv}` when `KimGrip`'s speed-dependent
+    /// fast path applies to it (validated ranges with `b > 0`, `c > 0`, μ_ct = 0, inside
+    /// `KimGrip`'s validity domain), else `None`.
+    #[cfg(feature = "speed-path")]
+    pub kim_grip_speed_law: Option<SpeedLaw>,
+}
+
+/// A speed-dependent friction law `μ(v) = a + b e^{−cv}` (TP A.14) as `KimGrip`'s
+/// speed-dependent fast path uses it (`kim_grip::speed_path`).
+#[cfg(feature = "speed-path")]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(crate) struct SpeedLaw {
+    /// `a`, the high-speed limit.
+    pub a: f32,
+    /// `b`, the amplitude.
+    pub b: f32,
+    /// `c` (s/m), the decay rate.
+    pub c: f32,
 }
 
 impl Derived {
@@ -72,8 +91,28 @@ impl Derived {
             }
             _ => 0.0,
         };
+        #[cfg(feature = "speed-path")]
+        let kim_grip_speed_law = match friction {
+            // The validated ranges too (a ≥ 1e-6, c ≤ 100; NaN fails every test): a law
+            // built from the enum's variant skips `FrictionLaw::speed_dependent`'s check
+            // (the `collide` fuzz target found a = −0.92 giving an infinite velocity).
+            FrictionLaw::SpeedDependent { a, b, c }
+                if a >= 1e-6
+                    && b > 0.0
+                    && c > 0.0
+                    && c <= 100.0
+                    && mu_ct == 0.0
+                    && a + b <= crate::validity::KIM_GRIP_MAX_MU
+                    && (a + b) * mu_s <= crate::validity::KIM_GRIP_MAX_MU_MU_S =>
+            {
+                Some(SpeedLaw { a, b, c })
+            }
+            _ => None,
+        };
         let pressed_k_z = 6.0 - 2.5 * mu_s;
         Self {
+            #[cfg(feature = "speed-path")]
+            kim_grip_speed_law,
             kim_grip_mu,
             kim_grip_min_slip_squared: if kim_grip_mu > 0.0 {
                 crate::kim_grip::FAST_PATH_MIN_SLIP_SQUARED

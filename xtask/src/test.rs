@@ -34,6 +34,21 @@ const STEPS: &[Step] = &[
         action: rustdoc,
     },
     Step {
+        title: "core: KimGrip's speed-dependent fast path (feature speed-path, off in the default build): unit and property tests",
+        action: || {
+            cargo_at_root(&[
+                "test",
+                "-p",
+                "cuesight",
+                "--features",
+                "speed-path",
+                "--lib",
+                "--test",
+                "properties",
+            ])
+        },
+    },
+    Step {
         title: "python: rustfmt of the Python package (python/, its own workspace)",
         action: crate::python::lint,
     },

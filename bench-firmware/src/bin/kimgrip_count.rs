@@ -1,12 +1,13 @@
 //! The instruction-count gate of `cargo xtask test` (reliability issue: a `KimGrip`
 //! regression of more than 5 % fails CI; issue 4: `KimGrip` f32 ≤ 150 instructions per
 //! collision): counts the f32 `KimGrip` prediction on fixed shots, one for each branch
-//! of its fast path plus three the general path takes, with the bench's method
+//! of its constant-μ fast path, one for each branch of its speed-dependent μ(v) fast path
+//! (issue 16 item 6: ≤ 200), plus four the general path takes, with the bench's method
 //! ([`cuesight_bench::count`]: function pointer, empty call subtracted, QEMU
 //! `-icount shift=0`). A branch has no loop, so its count does not depend on the
 //! numbers: the largest fast-path count is the fast path's worst case.
 //!
-//! Prints `kimgrip-shot <label> <fast|general> <milli-instructions>` per shot, then
+//! Prints `kimgrip-shot <label> <fast|speed|general> <milli-instructions>` per shot, then
 //! `kimgrip-fast-max <milli-instructions>` and `kimgrip-count <mean over the fast-path
 //! shots>` (the general path's speed-dependent μ, ~3,000, would drown a fast-path
 //! regression in the mean). xtask compares the mean with
@@ -25,72 +26,143 @@ use cuesight_bench::exit;
 use cuesight_bench::out::Out;
 use cuesight_bench::timer::{self, INSTRUCTIONS_PER_TICK};
 
-/// `(label, takes the fast path, μ (< 0: TP A.14's speed-dependent law), v, ω)`.
-type Shot = (&'static str, bool, f32, [f32; 2], [f32; 3]);
+/// `(label, the path that takes it, μ (< 0: TP A.14's speed-dependent law), v, ω)`.
+type Shot = (&'static str, Path, f32, [f32; 2], [f32; 3]);
+
+/// Which path of `KimGrip` a shot takes.
+#[derive(Clone, Copy, PartialEq)]
+enum Path {
+    /// The constant-μ fast path (≤ 150 instructions per branch).
+    Fast,
+    /// The speed-dependent μ(v) fast path (≤ 200 per branch).
+    Speed,
+    /// The general path.
+    General,
+}
+use Path::{Fast, General, Speed};
 
 /// The shots: `(label, takes the fast path, μ, v, ω)`, POOL parameters otherwise. Topspin
 /// (`ω_y > 0`) presses the object ball into the cloth; "certain" grips are those where
 /// the frictionless impulse `(1+e)a/2` already reaches the grip impulse `p*`, "band"
 /// the one where only the table friction's extra normal impulse does.
-const SHOTS: [Shot; 12] = [
-    ("topspin-slides", true, 0.05, [2.0, 0.0], [0.0, 70.0, 0.0]),
+const SHOTS: [Shot; 20] = [
+    ("topspin-slides", Fast, 0.05, [2.0, 0.0], [0.0, 70.0, 0.0]),
     (
         "topspin-grips-restitution",
-        true,
+        Fast,
         0.05,
         [2.0, 0.3],
         [0.0, 7.0, 0.0],
     ),
     (
         "topspin-grips-compression",
-        true,
+        Fast,
         0.05,
         [2.0, 0.1],
         [0.0, 3.0, 0.0],
     ),
     (
         "topspin-band-grips",
-        true,
+        Fast,
         0.05,
         [2.0, 0.0],
         [0.0, 17.98, 0.0],
     ),
-    ("stun-cut-slides", true, 0.05, [1.732, 1.0], [0.0, 0.0, 0.0]),
+    ("stun-cut-slides", Fast, 0.05, [1.732, 1.0], [0.0, 0.0, 0.0]),
     (
         "draw-grips-restitution",
-        true,
+        Fast,
         0.05,
         [2.0, 0.3],
         [0.0, -7.0, 0.0],
     ),
     (
         "draw-grips-compression",
-        true,
+        Fast,
         0.05,
         [2.0, 0.1],
         [0.0, -3.0, 0.0],
     ),
     (
         "near-gearing",
-        true,
+        Fast,
         0.05,
         [0.866, 0.5],
         [0.0, 0.0, -17.497_813],
     ),
-    // The general path: a speed-dependent μ, no friction, and slips below the fast
-    // path's 1 pm/s (exact gearing).
+    // TP A.14's speed-dependent law: one shot per branch of its fast path, each with
+    // c v₀ > 1 (the exponential's branch, longer than φ's), and one band grip with
+    // c v₀ < 1 to show φ's branch.
+    (
+        "mu-v-topspin-slides",
+        Speed,
+        -1.0,
+        [2.0, 0.0],
+        [0.0, 70.0, 0.0],
+    ),
+    (
+        "mu-v-topspin-grips-restitution",
+        Speed,
+        -1.0,
+        [5.0, 0.0],
+        [0.0, 40.0, 0.0],
+    ),
+    (
+        "mu-v-topspin-grips-compression",
+        Speed,
+        -1.0,
+        [8.0, 0.0],
+        [0.0, 40.0, 0.0],
+    ),
+    (
+        "mu-v-topspin-band-grips",
+        Speed,
+        -1.0,
+        [3.4, 0.0],
+        [0.0, 40.0, 0.0],
+    ),
+    (
+        "mu-v-topspin-band-grips-small-slip",
+        Speed,
+        -1.0,
+        [2.0, 0.0],
+        [0.0, 28.13, 0.0],
+    ),
+    (
+        "mu-v-stun-cut-slides",
+        Speed,
+        -1.0,
+        [1.732, 1.0],
+        [0.0, 0.0, 0.0],
+    ),
+    (
+        "mu-v-draw-grips-restitution",
+        Speed,
+        -1.0,
+        [4.4, 0.0],
+        [0.0, -40.0, 0.0],
+    ),
+    (
+        "mu-v-draw-grips-compression",
+        Speed,
+        -1.0,
+        [8.0, 0.0],
+        [0.0, -40.0, 0.0],
+    ),
+    // The general path: the speed-dependent μ past the speed path's range (a c k̄ p₁ >
+    // 1), no friction, and slips below the fast path's 1 pm/s (exact gearing).
     (
         "speed-dependent-mu",
-        false,
+        General,
         -1.0,
-        [2.0, 0.3],
+        [16.0, 3.0],
         [0.0, 30.0, 0.0],
     ),
-    ("frictionless", false, 0.0, [1.0, 0.5], [0.0, 10.0, 0.0]),
-    ("gearing-side", false, 0.05, [1.0, 1e-13], [0.0, 0.0, 0.0]),
+    ("frictionless", General, 0.0, [1.0, 0.5], [0.0, 10.0, 0.0]),
+    ("gearing-side", General, 0.05, [1.0, 1e-13], [0.0, 0.0, 0.0]),
     (
         "gearing-topspin",
-        false,
+        General,
         0.05,
         [1.0, 0.0],
         [0.0, 1e-12, 0.0],
@@ -103,7 +175,7 @@ fn main() -> ! {
     timer::start();
     let mut out = Out::stdout();
     let (mut fast_total_milli, mut fast_max_milli, mut fast_shots) = (0u64, 0u64, 0u64);
-    for (label, fast, mu, v, w) in SHOTS {
+    for (label, path, mu, v, w) in SHOTS {
         // μ < 0 stands for TP A.14's speed-dependent law (Marlow's data).
         let params = if mu < 0.0 {
             Ok(Params::POOL.with_friction_law(FrictionLaw::MARLOW))
@@ -116,9 +188,13 @@ fn main() -> ! {
         let c = count::count(cuesight::collide, &params, &impact, Model::KimGrip);
         let ticks = u64::from(c.ticks.saturating_sub(c.empty_ticks));
         let milli = ticks * u64::from(INSTRUCTIONS_PER_TICK) * 1000 / u64::from(c.reps);
-        let path = if fast { "fast" } else { "general" };
-        let _ = writeln!(out, "kimgrip-shot {label} {path} {milli}");
-        if fast {
+        let name = match path {
+            Fast => "fast",
+            Speed => "speed",
+            General => "general",
+        };
+        let _ = writeln!(out, "kimgrip-shot {label} {name} {milli}");
+        if path == Fast {
             fast_total_milli += milli;
             fast_max_milli = fast_max_milli.max(milli);
             fast_shots += 1;

@@ -153,38 +153,22 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
         // σ = s*/|v₀| and α_b/|v₀| = 1/(k_y + k_z): the direction's shape parameters.
         // (σ/2 as s*/(2|v₀|): the same rounding as 0.5 s*/|v₀|, one instruction fewer.)
         let half_sigma = stick_budget / (slip_norm + slip_norm);
-        let curvature = boundary - half_sigma;
-        // The mid-point slip v_m = v₀ − α K v₀/|v₀| after spending the fraction
-        // f = μp/s* ≤ 1 of the stick budget, α/|v₀| = f (σ/2 + (α_b/|v₀| − σ/2) f).
+        // The fraction f = μp/s* ≤ 1 of the stick budget spent.
         let fraction = normal / grip_normal;
-        let alpha = fraction * (half_sigma + curvature * fraction);
-        let mid_y = slip_y - alpha * (k_y::<R>() * slip_y);
-        let mid_z = slip_z - alpha * (k_z * slip_z);
-        // j = μ p · (−v_m/|v_m|).
-        let scale = mu * normal / R::sqrt(mid_y * mid_y + mid_z * mid_z);
-        (-scale * mid_y, -scale * mid_z, Regime::Sliding, normal)
+        let (j_y, j_z) = sliding_impulse(
+            (slip_y, slip_z),
+            k_z,
+            boundary,
+            half_sigma,
+            fraction,
+            mu * normal,
+        );
+        (j_y, j_z, Regime::Sliding, normal)
     } else {
         (stick_y, -stick_z_flipped, Regime::Gripping, grip_normal)
     };
     let (table, table_y, table_size) = if OBJECT_PRESSED {
-        // `table_friction_components` without its zero-slip branch: a table-contact
-        // slip of zero length (or one whose square underflows) makes `scale` infinite
-        // or NaN and so `table` infinite or NaN (`∞ · 0` included), which the guard
-        // below sends to the general path, whose branch handles it.
-        // The size capped by Coulomb's cone, μ_s times the table's normal impulse −j_z
-        // (m/s; see the general path; j_z < 0 here, the friction pressing the object
-        // ball down); the direction is the table-contact slip of the ball–ball impulses
-        // alone (`table_contact_slip`).
-        let size = if certain {
-            // ρ = μ μ_s |ĵ_stick,z| over the span p* = s*/μ: ρ p* = μ_s |j_stick,z|, the
-            // cone μ_s (−j_z) itself (j_z = −|j_stick,z|) up to rounding, so no min.
-            mu_s * stick_z_flipped
-        } else {
-            R::min(table_rate * span, -(mu_s * j_z))
-        };
-        let (slip_x, slip_y) = table_contact_slip(span, j_y, j_z);
-        let scale = size / R::sqrt(slip_x * slip_x + slip_y * slip_y);
-        (scale * slip_x, -scale * slip_y, size)
+        table_friction(certain, (mu_s, stick_z_flipped, table_rate), span, j_y, j_z)
     } else {
         (R::ZERO, R::ZERO, R::ZERO)
     };
@@ -230,4 +214,54 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
     Some(Outcome::assemble::<R, OBJECT_PRESSED>(
         params, impact, impulses, regime, lifted,
     ))
+}
+
+/// The sliding friction impulse on the object ball, `j = S (−v_m/|v_m|)`, after the
+/// budget `S = budget` (m/s), the fraction `f = fraction` of the stick budget: `v_m = v₀ −
+/// α K v₀/|v₀|`, `α/|v₀| = f (σ/2 + (α_b/|v₀| − σ/2) f)` (parent module docs), with
+/// `half_sigma = σ/2 = s*/(2|v₀|)` and `boundary = α_b/|v₀| = 1/(k_y + k_z)`. Shared with
+/// the speed-dependent fast path.
+#[inline(always)]
+pub(super) fn sliding_impulse<R: Real>(
+    (slip_y, slip_z): (R, R),
+    k_z: R,
+    boundary: R,
+    half_sigma: R,
+    fraction: R,
+    budget: R,
+) -> (R, R) {
+    let curvature = boundary - half_sigma;
+    let alpha = fraction * (half_sigma + curvature * fraction);
+    let mid_y = slip_y - alpha * (k_y::<R>() * slip_y);
+    let mid_z = slip_z - alpha * (k_z * slip_z);
+    let scale = budget / R::sqrt(mid_y * mid_y + mid_z * mid_z);
+    (-scale * mid_y, -scale * mid_z)
+}
+
+/// The pressed object ball's table friction `(table, table_y, size)` (m/s: `−x`
+/// magnitude, `y` component, size) after the pressing span `span`. Its size is the rate
+/// `ρ = table_rate` over the span, capped by Coulomb's cone, μ_s times the table's
+/// normal impulse `−j_z` (j_z < 0 here, the friction pressing the object ball down; see
+/// the general path) — or, when the grip is `certain` (`(1+e)a/2 ≥ p*`), the cone itself,
+/// `μ_s |j_stick,z|` (there `ρ p* = μ_s |j_stick,z|` by construction, so no `min`). Its
+/// direction is the table-contact slip of the ball–ball impulses alone
+/// (`table_contact_slip`), with no zero-length branch: a slip of zero length (or whose
+/// square underflows) makes the result infinite or NaN (`∞ · 0` included), which the
+/// callers' guards hand to the general path. Shared with the speed-dependent fast path.
+#[inline(always)]
+pub(super) fn table_friction<R: Real>(
+    certain: bool,
+    (mu_s, stick_z_flipped, table_rate): (R, R, R),
+    span: R,
+    j_y: R,
+    j_z: R,
+) -> (R, R, R) {
+    let size = if certain {
+        mu_s * stick_z_flipped
+    } else {
+        R::min(table_rate * span, -(mu_s * j_z))
+    };
+    let (slip_x, slip_y) = table_contact_slip(span, j_y, j_z);
+    let scale = size / R::sqrt(slip_x * slip_x + slip_y * slip_y);
+    (scale * slip_x, -scale * slip_y, size)
 }

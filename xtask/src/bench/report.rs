@@ -205,7 +205,7 @@ pub fn json(bench: &Bench) -> Result<Value> {
         },
         "kimgrip_branches": bench.branches.iter().map(|shot| json!({
             "label": shot.label,
-            "path": if shot.fast { "fast" } else { "general" },
+            "path": shot.path,
             "instructions": shot.instructions,
         })).collect::<Vec<_>>(),
         "host": host,
@@ -334,10 +334,10 @@ fn branch_table(report: &Value) -> String {
          collision. A branch has no loop, so one shot per branch covers them all \
          (`bench-firmware/src/bin/kimgrip_count.rs`; which branch each shot takes is \
          checked by the core's `gate_shots_take_their_branches`; `cargo xtask test` fails \
-         above {KIM_GRIP_TARGET}). The general path serves everything else: no friction, \
-         exact gearing, the cue ball's table friction, and the speed-dependent μ, \
-         which needs an `exp` and Newton steps and is not what the target's \
-         op-count floor describes:\n\n\
+         above {KIM_GRIP_TARGET}). TP A.14's speed-dependent μ(v) has a fast path of its own \
+         (`speed`, issue 16's target 200; `docs/physics.md` §4); the general path serves \
+         everything else: no friction, exact gearing, the cue ball's table friction, and \
+         μ(v) past that path's range:\n\n\
          | shot | path | instructions |\n|---|---|---:|\n",
         instructions(fast_max),
         verdict(fast_max <= KIM_GRIP_TARGET),
