@@ -187,10 +187,35 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
     } else {
         normal
     };
+    finish::<R, OBJECT_PRESSED>(
+        params,
+        impact,
+        guarded,
+        (normal, j_y, j_z),
+        (table, table_y, table_size),
+        regime,
+    )
+}
+
+/// The end of both fast paths: `None` unless `guarded` (the sum of impulses whose bound
+/// implies `Outcome::from_impulses`'s guard, see `slide`) is at most 1e17 (a NaN fails
+/// too: the general path then repeats the scene, its guard returns the error or its
+/// zero-slip branch gives the table friction a direction), else the outcome of the
+/// ball–ball impulses `(p, j_y, j_z)` and the pressed object ball's table friction
+/// `(table, table_y, size)`. The friction opposes the slip, whose z component keeps its
+/// sign while it shrinks (`α k_z ≤ k_z/(k_y + k_z) < 1`), and so does the stick impulse:
+/// with `v_z0 > 0` the friction pushes the cue ball up (`j_z < 0`), else the object ball.
+#[inline(always)]
+pub(super) fn finish<R: Real, const OBJECT_PRESSED: bool>(
+    params: &Params,
+    impact: &Impact,
+    guarded: R,
+    (normal, j_y, j_z): (R, R, R),
+    (table, table_y, table_size): (R, R, R),
+    regime: Regime,
+) -> Option<Outcome> {
     let bounded = guarded <= R::of(1e17);
     if !bounded {
-        // The general path repeats the scene: its guard returns the error, or its
-        // zero-slip branch gives the table friction a direction.
         return None;
     }
     let impulses = SpecificImpulses {
@@ -203,9 +228,6 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
         cue_table_x: R::ZERO,
         cue_table_y: R::ZERO,
     };
-    // The friction opposes the slip, whose z component keeps its sign while it
-    // shrinks (`α k_z ≤ k_z/(k_y + k_z) < 1`), and so does the stick impulse: with
-    // `v_z0 > 0` the friction pushes the cue ball up (`j_z < 0`), else the object ball.
     let lifted = if OBJECT_PRESSED {
         Lifted::Cue
     } else {

@@ -27,11 +27,11 @@
 //! then runs. The f64 evaluation (`collide_f64`, calibration's Jacobian) keeps the
 //! general path: polynomial approximations at 4e-7 would be noise in its differences.
 
-use super::fast_path::{sliding_impulse, table_friction, MIN_SLIP_SQUARED};
+use super::fast_path::{finish, sliding_impulse, table_friction, MIN_SLIP_SQUARED};
 use super::{gripped_normal_impulse, k_y};
 use crate::impact::Impact;
 use crate::math::{self, fast};
-use crate::outcome::{Lifted, Outcome, Regime, SpecificImpulses};
+use crate::outcome::{Outcome, Regime};
 use crate::params::{Params, SpeedLaw};
 
 /// Largest `x₁ = a c k̄ p₁` taken, and largest `c v₀` whose `1 − e^{−cv₀}` is taken as
@@ -222,26 +222,12 @@ fn slide<const OBJECT_PRESSED: bool>(
     } else {
         normal + budget
     };
-    let bounded = guarded <= 1e17;
-    if !bounded {
-        return None;
-    }
-    let impulses = SpecificImpulses {
-        normal,
-        friction_y: j_y,
-        friction_z: j_z,
-        table,
-        table_y,
-        table_size,
-        cue_table_x: 0.0,
-        cue_table_y: 0.0,
-    };
-    let lifted = if OBJECT_PRESSED {
-        Lifted::Cue
-    } else {
-        Lifted::Object
-    };
-    Some(Outcome::assemble::<f32, OBJECT_PRESSED>(
-        params, impact, impulses, regime, lifted,
-    ))
+    finish::<f32, OBJECT_PRESSED>(
+        params,
+        impact,
+        guarded,
+        (normal, j_y, j_z),
+        (table, table_y, table_size),
+        regime,
+    )
 }
