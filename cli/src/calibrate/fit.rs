@@ -14,6 +14,7 @@ use super::search::Search;
 
 pub use super::cross_validate::{cross_validate, series, Fold};
 pub use super::model::{model_throw, rigid_ceiling_deg, stun, FitKind, Physics, Solver};
+pub use super::profile::profile_t;
 
 /// Settings of a fit.
 #[derive(Clone, Copy, Debug)]
@@ -136,6 +137,9 @@ pub struct Fit {
     pub max_deg: (f64, usize),
     /// Weighted RMS √(χ²/(n − p)) (1 when the uncertainties are the scatter).
     pub reduced_chi: f64,
+    /// χ² = Σ ((model − measured)/u)² at the optimum (the profile statistic's origin,
+    /// [`profile_t`]).
+    pub chi2: f64,
     /// Model evaluations (one per point and parameter vector).
     pub evaluations: usize,
     /// Wall time (s).
@@ -186,6 +190,14 @@ pub fn t95(dof: usize) -> f64 {
     }
 }
 
+/// Each point's uncertainty (degrees): its own, else `options.default_uncertainty_deg`.
+pub(super) fn uncertainties(points: &[Measurement], options: &FitOptions) -> Vec<f64> {
+    points
+        .iter()
+        .map(|m| m.uncertainty_deg.unwrap_or(options.default_uncertainty_deg))
+        .collect()
+}
+
 /// Fit `options.kind` to `points` by weighted least squares (Levenberg–Marquardt).
 pub fn fit(points: &[Measurement], options: &FitOptions) -> Result<Fit, FitError> {
     let p = options.kind.len();
@@ -202,10 +214,7 @@ pub fn fit(points: &[Measurement], options: &FitOptions) -> Result<Fit, FitError
             "the default uncertainty must be > 0 degrees".to_owned(),
         ));
     }
-    let sigma: Vec<f64> = points
-        .iter()
-        .map(|m| m.uncertainty_deg.unwrap_or(options.default_uncertainty_deg))
-        .collect();
+    let sigma = uncertainties(points, options);
     let evaluations = Cell::new(0);
     let last_print = Cell::new(0.0);
     let start = Instant::now();
@@ -346,6 +355,7 @@ fn finish(
         rms_deg: rms,
         max_deg: max,
         reduced_chi: s2.sqrt(),
+        chi2,
         evaluations: evaluations + profiler.total.get(),
         seconds: start.elapsed().as_secs_f64(),
     })

@@ -33,9 +33,65 @@ use std::time::Instant;
 use levenberg_marquardt::{LevenbergMarquardt, TerminationReason};
 use nalgebra::DVector;
 
-use super::fit::{FitError, FitOptions};
+use super::fit::{t95, uncertainties, Fit, FitError, FitOptions};
 use super::input::Measurement;
 use super::problem::{lower, typical, upper, Problem};
+
+/// The profile t statistic `τ_k(x)` of parameter `k` of `fitted` (eq. 6.3 above), the
+/// fit of `points` with `options`: `x` lies in the parameter's 95 % profile interval
+/// exactly when `|τ_k(x)| ≤ t_{n−p, 0.975}` ([`t95`]), which one profile fit at `x`
+/// decides — where [`Intervals::Profile`](super::fit::Intervals::Profile) searches for
+/// both ends (tens of profile fits). For coverage studies: whether a known truth lies
+/// in the interval, without computing the interval.
+///
+/// The profile fit starts from the optimum's other parameters (the interval search
+/// starts from its neighbouring profile point), so the two can differ where the χ²
+/// valley has more than one minimum over the others; a test compares them
+/// (`cli/tests/calibrate/recovery.rs`).
+pub fn profile_t(
+    points: &[Measurement],
+    options: &FitOptions,
+    fitted: &Fit,
+    k: usize,
+    x: f64,
+) -> Result<f64, FitError> {
+    let p = options.kind.len();
+    if fitted.kind != options.kind || fitted.points.len() != points.len() || k >= p {
+        return Err(FitError(format!(
+            "profile_t: parameter {k} of a {} fit of {} points, asked of a {} fit with {} points",
+            options.kind.name(),
+            points.len(),
+            fitted.kind.name(),
+            fitted.points.len()
+        )));
+    }
+    let sigma = uncertainties(points, options);
+    let dof = points.len() - p;
+    let profiler = Profiler {
+        points,
+        sigma: &sigma,
+        options,
+        theta: fitted.estimates.iter().map(|e| e.value).collect(),
+        chi2: fitted.chi2,
+        s2: fitted.chi2 / dof as f64,
+        t: t95(dof),
+        evaluations: Cell::new(0),
+        total: Cell::new(0),
+        start: Instant::now(),
+        last_print: Cell::new(f64::INFINITY),
+        failure: Cell::new(None),
+    };
+    let centre = profiler.theta[k];
+    let mut others = profiler.theta.clone();
+    others.remove(k);
+    let (s, _) = profiler.profile(k, x, (centre, &others))?;
+    let tau = ((s - profiler.chi2).max(0.0) / profiler.s2).sqrt();
+    Ok(if x < centre { -tau } else { tau })
+}
+
+/// Steps of [`Profiler::profile`]'s walk along the χ² valley to a point it found
+/// outside the interval.
+const CONTINUATION: usize = 4;
 
 /// What a profile search needs of the fit.
 pub(super) struct Profiler<'a> {
@@ -78,32 +134,53 @@ impl Profiler<'_> {
         }
     }
 
-    /// `S_k(x)` and the other parameters at its minimum, from `warm` (the others).
+    /// `S_k(x)` and the other parameters at its minimum, from `warm`: a profile point
+    /// `(x_w, others)` already found (the optimum, or the search's last inside point).
     ///
-    /// A profile fit may stop on Levenberg–Marquardt's evaluation limit
-    /// (`LostPatience`: it crawls along a kink of the model, where a point changes
-    /// between gripping and sliding); it is then restarted once from the optimum's
-    /// other parameters and the lower χ² of the two best points kept. That χ² is an
-    /// upper bound on `S_k(x)`, within the last accepted step of it.
-    fn profile(&self, k: usize, x: f64, warm: &[f64]) -> Result<(f64, Vec<f64>), FitError> {
+    /// A profile fit's χ² bounds `S_k(x)` from above, so a verdict inside the interval
+    /// stands. A fit may stop above the valley's floor, though: on Levenberg–Marquardt's
+    /// evaluation limit (`LostPatience`: it crawls along a kink of the model, where a
+    /// point changes between gripping and sliding; then it is restarted once from the
+    /// optimum's other parameters), or from a start far up the valley's side, which
+    /// puts `x` outside when it is inside (seed 52 of the `mu-v-e` recovery trials: the
+    /// search ended `mu_c`'s interval at 0.425 where the profile at 0.44 is 1.49
+    /// t-units from the optimum, below t = 2.04). So an outside verdict is checked by
+    /// walking from `x_w` to `x` in [`CONTINUATION`] steps, each fit started from the
+    /// last one's optimum; the lowest χ² found is kept, an upper bound on `S_k(x)`
+    /// within the last accepted step of it.
+    fn profile(
+        &self,
+        k: usize,
+        x: f64,
+        (warm_x, warm): (f64, &[f64]),
+    ) -> Result<(f64, Vec<f64>), FitError> {
         let fail = |e: String| FitError(format!("profile of {}: {e}", self.name(k)));
         if warm.is_empty() {
             let problem = self.problem(k, x, Vec::new(), "");
             self.total.set(self.total.get() + self.points.len());
             return Ok((problem.chi2(&[x]).map_err(fail)?, Vec::new()));
         }
-        let (chi2, others, patience_lost) = self.minimize(k, x, warm).map_err(fail)?;
-        if !patience_lost {
-            return Ok((chi2, others));
+        let (mut chi2, mut others, patience_lost) = self.minimize(k, x, warm).map_err(fail)?;
+        if patience_lost {
+            let mut optimum = self.theta.clone();
+            optimum.remove(k);
+            let (chi2_b, others_b, _) = self.minimize(k, x, &optimum).map_err(fail)?;
+            if chi2_b < chi2 {
+                (chi2, others) = (chi2_b, others_b);
+            }
         }
-        let mut optimum = self.theta.clone();
-        optimum.remove(k);
-        let (chi2_b, others_b, _) = self.minimize(k, x, &optimum).map_err(fail)?;
-        Ok(if chi2_b < chi2 {
-            (chi2_b, others_b)
-        } else {
-            (chi2, others)
-        })
+        if self.excess(chi2) > 0.0 {
+            let mut start = warm.to_vec();
+            for step in 1..=CONTINUATION {
+                let at = warm_x + (x - warm_x) * step as f64 / CONTINUATION as f64;
+                let (chi2_at, others_at, _) = self.minimize(k, at, &start).map_err(fail)?;
+                start = others_at;
+                if step == CONTINUATION && chi2_at < chi2 {
+                    (chi2, others) = (chi2_at, start.clone());
+                }
+            }
+        }
+        Ok((chi2, others))
     }
 
     /// One Levenberg–Marquardt run of the profile at `x` from `warm`: χ² at its best
@@ -167,7 +244,7 @@ impl Profiler<'_> {
         let mut outside = None;
         for _ in 0..40 {
             let x = (centre + direction * step).clamp(low, high);
-            let (s, o) = self.profile(k, x, &inside.2)?;
+            let (s, o) = self.profile(k, x, (inside.0, &inside.2))?;
             let g = self.excess(s);
             if g > 0.0 {
                 outside = Some((x, g));
@@ -194,7 +271,7 @@ impl Profiler<'_> {
             if !(x.is_finite() && (x - xi) * (x - xo) < 0.0) {
                 x = 0.5 * (xi + xo);
             }
-            let (s, o) = self.profile(k, x, &inside.2)?;
+            let (s, o) = self.profile(k, x, (inside.0, &inside.2))?;
             let g = self.excess(s);
             if g > 0.0 {
                 outside = (x, g);

@@ -496,9 +496,8 @@ fn mu_v_fit_is_the_global_optimum_on_the_shared_set() {
 }
 
 /// The compliant contact (`--fit mu-v-k`, reference solver) reaches the points above
-/// the rigid ceiling: docs/calibration.md §7 (about 6 s of CPU: run with `--ignored`).
+/// the rigid ceiling: docs/calibration.md §7 (about 6 s of CPU).
 #[test]
-#[ignore = "about 6 s of CPU in release: run with --ignored --nocapture"]
 fn mu_v_k_reaches_points_above_the_rigid_ceiling() {
     let points = read_file(&shared_set()).unwrap();
     let mut options = FitOptions::new(FitKind::MuVK);
