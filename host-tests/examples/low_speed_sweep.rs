@@ -5,8 +5,12 @@
 //!
 //!     cargo run --release -p cuesight-host --example low_speed_sweep
 //!
-//! prints the tables of `docs/low-speed-limit.md`, writes the full sweep to
-//! `target/tmp/low-speed-sweep.csv` and redraws `docs/low-speed-limit.svg`.
+//! prints the tables of `docs/low-speed-limit.md`, records its figures
+//! (`cuesight_figures::record!`), writes the full sweep to
+//! `target/tmp/low-speed-sweep.csv` and draws `target/docs/low-speed-limit.svg`;
+//! `cargo xtask docs` writes both into the page and `docs/low-speed-limit.svg`, and
+//! `cargo xtask test` runs it (dev profile: the solver's crate is optimised there too,
+//! about 20 s on two cores) so that CI's `cargo xtask docs --check` sees any drift.
 use cuesight_figures::record;
 use cuesight_host::reference::BallState;
 use cuesight_host::timed::{
@@ -270,85 +274,47 @@ fn main() {
         );
     }
 
-    // The sweep.
+    // The sweep: one scenario per task, on every core (`sweep_scenario`); the results
+    // are assembled in the scenarios' order, so the output does not depend on the
+    // number of threads.
+    let scenarios: Vec<Scenario> = MUS
+        .iter()
+        .flat_map(|&mu| {
+            SPINS
+                .iter()
+                .flat_map(move |&spin| CUTS.iter().map(move |&cut| Scenario::pool(spin, cut, mu)))
+        })
+        .collect();
+    let workers = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut swept: Vec<Option<Swept>> = (0..scenarios.len()).map(|_| None).collect();
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..workers)
+            .map(|w| {
+                let (scenarios, speeds) = (&scenarios, &speeds);
+                scope.spawn(move || {
+                    (w..scenarios.len())
+                        .step_by(workers)
+                        .map(|i| (i, sweep_scenario(scenarios[i], speeds, &fixed, &moving)))
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        for handle in handles {
+            for (i, result) in handle.join().expect("a sweep thread panicked") {
+                swept[i] = Some(result);
+            }
+        }
+    });
     let mut rows = Vec::new();
     let mut csv =
         String::from("spin,cut_deg,mu,speed,full,in_plane,rolling,moving_full,duration_us\n");
     let mut convergence = 0.0f64;
     let mut without_gravity = 0.0f64;
-    for &mu in &MUS {
-        for &spin in &SPINS {
-            for &cut in &CUTS {
-                let s = Scenario::pool(spin, cut, mu);
-                let p = s.params();
-                let mut curve = Vec::new();
-                for &u in &speeds {
-                    let c = run(&s, &p, u, &fixed);
-                    let me = measures(&c, u);
-                    let mv = run(&s, &p, u, &moving).deviation.max();
-                    let _ = writeln!(
-                        csv,
-                        "{},{cut},{mu},{u:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.2}",
-                        spin.label(),
-                        me.full,
-                        me.in_plane,
-                        me.rolling,
-                        mv,
-                        c.timed.duration * 1e6
-                    );
-                    curve.push(me.full);
-                    let fine = run(
-                        &s,
-                        &p,
-                        u,
-                        &TimedConfig {
-                            steps: 2 * fixed.steps,
-                            ..fixed
-                        },
-                    );
-                    let change = cuesight_host::timed::Deviation::between(
-                        [&c.timed.cue_ball, &c.timed.object_ball],
-                        [&fine.timed.cue_ball, &fine.timed.object_ball],
-                        u,
-                        POOL_RADIUS,
-                    );
-                    convergence = convergence.max(change.max());
-                    if u == speeds[0] || u == *speeds.last().unwrap() {
-                        let flat = TimedParams { gravity: 0.0, ..p };
-                        without_gravity =
-                            without_gravity.max(run(&s, &flat, u, &fixed).deviation.max());
-                    }
-                }
-                let (full, _) = limit_speed(&speeds, THRESHOLD, |u| {
-                    measures(&run(&s, &p, u, &fixed), u).full
-                });
-                let (in_plane, _) = limit_speed(&speeds, THRESHOLD, |u| {
-                    measures(&run(&s, &p, u, &fixed), u).in_plane
-                });
-                let (rolling, _) = limit_speed(&speeds, THRESHOLD, |u| {
-                    measures(&run(&s, &p, u, &fixed), u).rolling
-                });
-                let (mov, _) = limit_speed(&speeds, THRESHOLD, |u| {
-                    run(&s, &p, u, &moving).deviation.max()
-                });
-                let at_limit =
-                    full.map_or(String::from("—"), |u| dominant(&run(&s, &p, u, &fixed)));
-                let at_2 = [
-                    run(&s, &p, 2.0, &fixed).deviation.max(),
-                    run(&s, &p, 2.0, &moving).deviation.max(),
-                ];
-                rows.push(Row {
-                    scenario: s,
-                    full,
-                    in_plane,
-                    rolling,
-                    moving: mov,
-                    at_limit,
-                    at_2,
-                    curve,
-                });
-            }
-        }
+    for result in swept.into_iter().flatten() {
+        csv.push_str(&result.csv);
+        convergence = convergence.max(result.convergence);
+        without_gravity = without_gravity.max(result.without_gravity);
+        rows.push(result.row);
     }
 
     let _ = writeln!(
@@ -517,8 +483,10 @@ fn main() {
     std::fs::create_dir_all(&tmp).expect("target/tmp");
     std::fs::write(tmp.join("low-speed-sweep.csv"), csv).expect("write csv");
     std::fs::write(tmp.join("low-speed-limit.txt"), &out).expect("write report");
-    std::fs::write(root.join("docs/low-speed-limit.svg"), svg(&speeds, &rows)).expect("write svg");
-    eprintln!("wrote target/tmp/low-speed-sweep.csv, target/tmp/low-speed-limit.txt, docs/low-speed-limit.svg");
+    let drawings = root.join("target/docs");
+    std::fs::create_dir_all(&drawings).expect("target/docs");
+    std::fs::write(drawings.join("low-speed-limit.svg"), svg(&speeds, &rows)).expect("write svg");
+    eprintln!("wrote target/tmp/low-speed-sweep.csv, target/tmp/low-speed-limit.txt, target/docs/low-speed-limit.svg (cargo xtask docs copies it into docs/)");
 }
 
 /// Log–log plots of the error against speed for the μ = 0.05 scenarios: one panel per
@@ -617,4 +585,91 @@ fn svg(speeds: &[f64], rows: &[Row]) -> String {
     let _ = writeln!(s, "<text transform=\"translate(16 {:.1}) rotate(-90)\" text-anchor=\"middle\">max(|Δv|, R|Δω|) / U</text>", top + panel_h + 0.5 * gap_y);
     s.push_str("</svg>\n");
     s
+}
+
+/// One scenario's sweep: its [`Row`], its lines of the CSV, and its largest step-halving
+/// change and gravity effect.
+struct Swept {
+    row: Row,
+    csv: String,
+    convergence: f64,
+    without_gravity: f64,
+}
+
+fn sweep_scenario(s: Scenario, speeds: &[f64], fixed: &TimedConfig, moving: &TimedConfig) -> Swept {
+    let (fixed, moving) = (*fixed, *moving);
+    let p = s.params();
+    let (spin, cut, mu) = (s.spin, s.cut_deg, s.mu);
+    let mut csv = String::new();
+    let mut convergence = 0.0f64;
+    let mut without_gravity = 0.0f64;
+    let mut curve = Vec::new();
+    for &u in speeds {
+        let c = run(&s, &p, u, &fixed);
+        let me = measures(&c, u);
+        let mv = run(&s, &p, u, &moving).deviation.max();
+        let _ = writeln!(
+            csv,
+            "{},{cut},{mu},{u:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.2}",
+            spin.label(),
+            me.full,
+            me.in_plane,
+            me.rolling,
+            mv,
+            c.timed.duration * 1e6
+        );
+        curve.push(me.full);
+        let fine = run(
+            &s,
+            &p,
+            u,
+            &TimedConfig {
+                steps: 2 * fixed.steps,
+                ..fixed
+            },
+        );
+        let change = cuesight_host::timed::Deviation::between(
+            [&c.timed.cue_ball, &c.timed.object_ball],
+            [&fine.timed.cue_ball, &fine.timed.object_ball],
+            u,
+            POOL_RADIUS,
+        );
+        convergence = convergence.max(change.max());
+        if u == speeds[0] || u == *speeds.last().unwrap() {
+            let flat = TimedParams { gravity: 0.0, ..p };
+            without_gravity = without_gravity.max(run(&s, &flat, u, &fixed).deviation.max());
+        }
+    }
+    let (full, _) = limit_speed(speeds, THRESHOLD, |u| {
+        measures(&run(&s, &p, u, &fixed), u).full
+    });
+    let (in_plane, _) = limit_speed(speeds, THRESHOLD, |u| {
+        measures(&run(&s, &p, u, &fixed), u).in_plane
+    });
+    let (rolling, _) = limit_speed(speeds, THRESHOLD, |u| {
+        measures(&run(&s, &p, u, &fixed), u).rolling
+    });
+    let (mov, _) = limit_speed(speeds, THRESHOLD, |u| {
+        run(&s, &p, u, &moving).deviation.max()
+    });
+    let at_limit = full.map_or(String::from("—"), |u| dominant(&run(&s, &p, u, &fixed)));
+    let at_2 = [
+        run(&s, &p, 2.0, &fixed).deviation.max(),
+        run(&s, &p, 2.0, &moving).deviation.max(),
+    ];
+    Swept {
+        row: Row {
+            scenario: s,
+            full,
+            in_plane,
+            rolling,
+            moving: mov,
+            at_limit,
+            at_2,
+            curve,
+        },
+        csv,
+        convergence,
+        without_gravity,
+    }
 }

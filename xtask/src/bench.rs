@@ -90,6 +90,18 @@ fn report_dir(update_docs: bool) -> PathBuf {
     }
 }
 
+/// `--stream-only` with the default timeout: a step of `cargo xtask test`, so that the
+/// per-sample table of `docs/sensors.md` (`bench-stream-*`) is recorded where CI's
+/// `cargo xtask docs --check` compares it.
+pub fn stream_figures() -> Result {
+    tools::ensure_toolchain()?;
+    tools::ensure_qemu()?;
+    let dir = out_dir();
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| Failure::new(format!("creating {}: {e}", dir.display())))?;
+    stream::run(&dir, Duration::from_secs(600)).map(|_| ())
+}
+
 /// Runs the whole benchmark and writes the report (over the documents with
 /// `--update-docs`).
 pub fn run(args: &Args) -> Result {

@@ -38,6 +38,7 @@
 //! `cuesight shot`'s drawing of the page's example ([`drawing`]).
 
 mod drawing;
+pub use drawing::SWEEP;
 mod tradeoff;
 mod values;
 

@@ -128,6 +128,10 @@ const STEPS: &[Step] = &[
         action: crate::bench::check,
     },
     Step {
+        title: "docs: the figures of the long runs: the low-speed sweep (cargo run -p cuesight-host --example low_speed_sweep) and the streaming estimator's instructions per sample in QEMU (cargo xtask bench --stream-only)",
+        action: long_runs,
+    },
+    Step {
         title: "docs: every generated block of README.md and docs/ is current, the figures the tests above recorded included (cargo xtask docs --check)",
         action: || crate::docs::run(&crate::docs::Args::check()),
     },
@@ -136,6 +140,15 @@ const STEPS: &[Step] = &[
         action: crate::fuzz::check,
     },
 ];
+
+/// The runs that record the figures no test records: the low-speed sweep
+/// (`docs/low-speed-limit.md` and its plot; about 20 s on two cores) and the streaming
+/// estimator's instruction counts (`docs/sensors.md` §11; about 30 s).
+fn long_runs() -> Result {
+    let sweep: Vec<&str> = crate::docs::SWEEP.split(' ').skip(1).collect();
+    cmd::run(tools::host_cargo()?.args(&sweep))?;
+    crate::bench::stream_figures()
+}
 
 /// `cargo doc --no-deps --workspace` with every rustdoc warning an error (broken
 /// intra-doc links, bad code-block attributes, ...). The doctests themselves run in

@@ -1,7 +1,9 @@
-//! `docs/shot-cli.svg`, the example drawing of `docs/shot-cli.md`: what `cuesight shot
-//! --scene cli/scenes/cut_to_corner.toml --svg FILE` draws. `cargo xtask docs` writes
-//! it, `--check` fails when it differs (the drawing changed and the page's example did
-//! not).
+//! The drawings of `docs/`: `docs/shot-cli.svg`, the example drawing of
+//! `docs/shot-cli.md` (what `cuesight shot --scene cli/scenes/cut_to_corner.toml --svg
+//! FILE` draws, run here), and `docs/low-speed-limit.svg`, which the low-speed sweep
+//! draws into `target/docs/` (`cargo run -p cuesight-host --example low_speed_sweep`, a
+//! step of `cargo xtask test`). `cargo xtask docs` writes them, `--check` fails when
+//! one differs (the drawing changed and the page did not).
 
 use crate::cmd::{self, Failure, Result};
 
@@ -24,18 +26,48 @@ pub fn run(check: bool) -> Result<Outcome> {
     let output = output_of(&line)?;
     let now = std::fs::read_to_string(&drawn)
         .map_err(|e| Failure::new(format!("`{line}` wrote no drawing ({e}): {output}")))?;
-    let path = root.join("docs").join("shot-cli.svg");
-    let was = std::fs::read_to_string(&path).unwrap_or_default();
     let mut stale = Vec::new();
+    compare(
+        "shot-cli.svg",
+        &now,
+        &format!("`{COMMAND} docs/shot-cli.svg`"),
+        check,
+        &mut stale,
+    )?;
+    let swept = scratch.join("low-speed-limit.svg");
+    match std::fs::read_to_string(&swept) {
+        Ok(now) => compare(
+            "low-speed-limit.svg",
+            &now,
+            &format!("`{SWEEP}`"),
+            check,
+            &mut stale,
+        )?,
+        Err(e) => stale.push(format!(
+            "docs/low-speed-limit.svg: {} not drawn ({e}): run `{SWEEP}` (a step of `cargo xtask test`)",
+            swept.display()
+        )),
+    }
+    Ok(Outcome { stale, compared: 2 })
+}
+
+/// The command that draws `target/docs/low-speed-limit.svg`.
+pub const SWEEP: &str = "cargo run -p cuesight-host --example low_speed_sweep";
+
+/// Compares `docs/NAME` with the drawing `now` (made by `by`), writing it unless
+/// `check`; a difference goes to `stale`.
+fn compare(name: &str, now: &str, by: &str, check: bool, stale: &mut Vec<String>) -> Result {
+    let path = cmd::root().join("docs").join(name);
+    let was = std::fs::read_to_string(&path).unwrap_or_default();
     if was != now {
         stale.push(format!(
-            "docs/shot-cli.svg is not what `{COMMAND} docs/shot-cli.svg` draws (`cargo xtask docs` writes it)"
+            "docs/{name} is not what {by} draws (`cargo xtask docs` writes it)"
         ));
         if !check {
-            std::fs::write(&path, &now)
+            std::fs::write(&path, now)
                 .map_err(|e| Failure::new(format!("writing {}: {e}", path.display())))?;
-            println!("xtask docs: updated docs/shot-cli.svg");
+            println!("xtask docs: updated docs/{name}");
         }
     }
-    Ok(Outcome { stale, compared: 1 })
+    Ok(())
 }
