@@ -29,9 +29,10 @@
 //!
 //! is a figure a test measured and recorded (`cuesight_figures::record!`, under
 //! `target/figures/`): `cargo xtask docs` writes what the last run of that test
-//! recorded, and `--check` fails on a figure the tests did not record. `docs:figure
-//! KEY by-hand` marks one recorded by a test CI does not run (`#[ignore]`d for its
-//! time): checked when a recording exists, else listed as unchecked.
+//! recorded, and `--check` fails on a figure the tests did not record. Every recording
+//! test runs in `cargo xtask test` (the long runs in their own step), so CI checks
+//! every figure; the former `KEY by-hand` marker, for figures CI did not record, is
+//! refused.
 //!
 //! Besides the blocks, `docs/tradeoff.md` and its plot are rendered whole from the
 //! measurements in `docs/tradeoff.json` ([`tradeoff`]), and `docs/shot-cli.svg` is
@@ -45,7 +46,7 @@ mod values;
 use std::path::PathBuf;
 
 use crate::cmd::{self, Failure, Result};
-use values::{console, figure, value, UNRECORDED};
+use values::{console, figure, value};
 
 /// `cargo xtask docs` arguments.
 #[derive(clap::Args)]
@@ -75,7 +76,6 @@ struct Block {
 
 pub fn run(args: &Args) -> Result {
     let mut stale = Vec::new();
-    let mut unchecked = Vec::new();
     let mut blocks_seen = 0;
     for file in files()? {
         let text = std::fs::read_to_string(&file)
@@ -92,14 +92,8 @@ pub fn run(args: &Args) -> Result {
             blocks_seen += 1;
             let was = &text[block.content.clone()];
             let line = text[..block.content.start].lines().count();
-            let now = match render(&block.spec, is_inline(&text, block)) {
-                Ok(now) => now,
-                Err(e) if e.message.starts_with(UNRECORDED) => {
-                    unchecked.push(shown.clone());
-                    was.to_string()
-                }
-                Err(e) => return Err(Failure::new(format!("{shown}:{line}: {}", e.message))),
-            };
+            let now = render(&block.spec, is_inline(&text, block))
+                .map_err(|e| Failure::new(format!("{shown}:{line}: {}", e.message)))?;
             if now != was && !within_layout_slack(&block.spec, was, &now) {
                 stale.push(format!(
                     "{shown}:{line}: `{}` is stale\n{}",
@@ -129,26 +123,9 @@ pub fn run(args: &Args) -> Result {
             stale.join("\n")
         )));
     }
-    if !unchecked.is_empty() {
-        let mut per_file: Vec<(String, usize)> = Vec::new();
-        for file in &unchecked {
-            match per_file.last_mut() {
-                Some((last, n)) if last == file => *n += 1,
-                _ => per_file.push((file.clone(), 1)),
-            }
-        }
-        let listed: Vec<String> = per_file.iter().map(|(f, n)| format!("{f} {n}")).collect();
-        println!(
-            "xtask docs: {} by-hand figure(s) not recorded here, left as they are ({}): \
-             the ignored tests, examples or `cargo xtask bench` runs that record them did \
-             not run since the last `cargo xtask test`",
-            unchecked.len(),
-            listed.join(", ")
-        );
-    }
     println!(
         "xtask docs: {} generated blocks {}",
-        blocks_seen - unchecked.len(),
+        blocks_seen,
         if args.check { "current" } else { "regenerated" }
     );
     Ok(())

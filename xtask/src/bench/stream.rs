@@ -631,9 +631,9 @@ impl StreamBench {
 
     /// The console summary.
     /// Records the per-sample table of docs/sensors.md §11 (`bench-stream-CAUSE-count`,
-    /// `-mean`, `-max`; `CAUSE` `all` for every sample): its `docs:figure … by-hand`
-    /// blocks, checked by `cargo xtask docs --check` after this command (CI does not run
-    /// it).
+    /// `-mean`, `-max`; `CAUSE` `all` for every sample): its `docs:figure` blocks,
+    /// checked by `cargo xtask docs --check` after this command (a step of `cargo xtask
+    /// test`, so CI runs both).
     fn record(&self) -> Result {
         const COMMAND: &str = "cargo xtask bench --stream-only";
         let (mean, max, _, _) = self.summary();

@@ -177,18 +177,12 @@ pub(super) fn value(name: &str) -> Result<String> {
 }
 
 /// A figure recorded by the test that measures it (`cuesight_figures::record!`).
-/// `KEY by-hand` (an ignored test's figure) renders as what the docs hold when it is
-/// not recorded: [`run`](super::run) counts those as unchecked.
-pub(super) fn figure(spec: &str) -> Result<String> {
-    let (key, by_hand) = match spec.split_once(' ') {
-        Some((key, "by-hand")) => (key, true),
-        None => (spec, false),
-        Some(_) => {
-            return Err(Failure::new(format!(
-                "`docs:figure {spec}`: expected `KEY` or `KEY by-hand`"
-            )))
-        }
-    };
+pub(super) fn figure(key: &str) -> Result<String> {
+    if key.contains(' ') {
+        return Err(Failure::new(format!(
+            "`docs:figure {key}`: expected a key alone (figures CI does not record, once marked `by-hand`, are no longer accepted: record it in a test or a step `cargo xtask test` runs)"
+        )));
+    }
     if !cuesight_figures::valid_key(key) {
         return Err(Failure::new(format!(
             "`docs:figure {key}`: not a figure key"
@@ -197,9 +191,6 @@ pub(super) fn figure(spec: &str) -> Result<String> {
     let path = cuesight_figures::dir().join(key);
     match std::fs::read_to_string(&path) {
         Ok(text) => Ok(text.lines().next().unwrap_or_default().to_string()),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound && by_hand => {
-            Err(Failure::new(format!("{UNRECORDED}{key}")))
-        }
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Err(Failure::new(format!(
             "figure `{key}` is not recorded ({}): run the tests first (`cargo xtask test`, \
              or the test that records it: `grep -rn '\"{key}\"' --include=*.rs .`)",
@@ -208,6 +199,3 @@ pub(super) fn figure(spec: &str) -> Result<String> {
         Err(e) => Err(Failure::new(format!("reading {}: {e}", path.display()))),
     }
 }
-
-/// The start of [`figure`]'s error for a by-hand figure not recorded.
-pub(super) const UNRECORDED: &str = "unrecorded by-hand figure ";
