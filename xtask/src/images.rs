@@ -37,12 +37,21 @@ pub const LIVE: Variant = Variant {
 };
 
 /// The nrf52840 board. `--no-default-features` leaves the `shot` request out too (the
-/// board's image with it is over the flash budget), so this also builds and lints the
+/// board's image with it is over the 44 KiB target the link images are held to, though
+/// within the 48 KiB budget: [`NRF52840_SHOT`]), so this also builds and lints the
 /// firmware without `shot`.
 pub const NRF52840: Variant = Variant {
     name: "nrf52840",
     features: &["--no-default-features", "--features", "nrf52840"],
     linted: true,
+};
+
+/// The nrf52840 board with the `shot` request (README's "nRF52840": within the 48 KiB
+/// budget, over the 44 KiB target; built only for `cargo xtask docs`' figure).
+pub const NRF52840_SHOT: Variant = Variant {
+    name: "nrf52840-shot",
+    features: &["--no-default-features", "--features", "nrf52840,shot"],
+    linted: false,
 };
 
 /// The default image with the panic handler replaced by a call to a symbol that exists

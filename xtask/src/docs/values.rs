@@ -141,6 +141,9 @@ pub(super) fn value(name: &str) -> Result<String> {
         }
         "nrf52840-flash" => thousands(nrf52840_sizes().map(|s| s.text + s.data)?),
         "nrf52840-static-ram" => thousands(nrf52840_sizes().map(|s| s.data + s.bss)?),
+        "nrf52840-shot-flash" => {
+            thousands(sizes_of(&crate::images::NRF52840_SHOT.build()?).map(|s| s.text + s.data)?)
+        }
         "live-flash" => thousands(live_sizes().map(|s| s.text + s.data)?),
         "live-static-ram" => thousands(live_sizes().map(|s| s.data + s.bss)?),
         "live-flash-under-budget" => {

@@ -20,6 +20,8 @@ use cuesight_host::timed::{
 use glam::DVec3;
 use std::fmt::Write as _;
 
+mod mechanisms;
+
 const THRESHOLD: f64 = 0.01;
 const SPINS: [SpinKind; 4] = [
     SpinKind::Stun,
@@ -125,8 +127,8 @@ fn key_number(x: f64) -> String {
     x.to_string().replace('.', "-")
 }
 
-/// The figures of docs/low-speed-limit.md §4 and of its summary, recorded by hand (this
-/// example is not run by CI; `cargo xtask docs --check` checks them when recorded).
+/// The figures of docs/low-speed-limit.md §4 and of its summary (`cargo xtask test` runs
+/// this example; `cargo xtask docs --check` compares them).
 fn record_sweep(rows: &[Row], top: f64) {
     let limit = |r: &Row| r.full.filter(|&u| u < top);
     let largest = |f: &dyn Fn(&Row) -> Option<f64>, keep: &dyn Fn(&Row) -> bool| {
@@ -351,6 +353,7 @@ fn main() {
             .fold(0.0f64, f64::max)
     };
     record_sweep(&rows, top);
+    mechanisms::record_mechanisms(&rows, &speeds, &fixed);
     let _ = writeln!(out, "\nOverall (largest U_1% over the scenarios):\n");
     for (name, mu) in [
         ("μ = 0.05", Some(0.05)),
