@@ -712,6 +712,19 @@ impl SpinKind {
     }
 }
 
+/// The low-speed sweep's scenarios (docs/low-speed-limit.md §4: the sweep example and
+/// `tests/low_speed_limit.rs`): every spin, cut (degrees) and ball–ball μ.
+pub const SPINS: [SpinKind; 4] = [
+    SpinKind::Stun,
+    SpinKind::Roll,
+    SpinKind::Draw,
+    SpinKind::Side,
+];
+/// The sweep's cut angles (degrees).
+pub const CUTS: [f64; 4] = [0.0, 30.0, 60.0, 85.0];
+/// The sweep's ball–ball friction coefficients.
+pub const MUS: [f64; 3] = [0.05, 0.02, 0.1];
+
 /// One low-speed scenario: spin kind, cut angle and ball–ball friction.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Scenario {

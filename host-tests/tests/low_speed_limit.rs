@@ -10,14 +10,7 @@ use cuesight_host::timed::{
 };
 use glam::DVec3;
 
-const SPINS: [SpinKind; 4] = [
-    SpinKind::Stun,
-    SpinKind::Roll,
-    SpinKind::Draw,
-    SpinKind::Side,
-];
-const CUTS: [f64; 4] = [0.0, 30.0, 60.0, 85.0];
-const MUS: [f64; 3] = [0.05, 0.02, 0.1];
+use cuesight_host::timed::{CUTS, MUS, SPINS};
 
 /// The 48 scenarios of the sweep: four spins, four cuts, three μ; e* = 0.95, μ_s = 0.3.
 fn scenarios() -> Vec<Scenario> {

@@ -23,14 +23,7 @@ use std::fmt::Write as _;
 mod mechanisms;
 
 const THRESHOLD: f64 = 0.01;
-const SPINS: [SpinKind; 4] = [
-    SpinKind::Stun,
-    SpinKind::Roll,
-    SpinKind::Draw,
-    SpinKind::Side,
-];
-const CUTS: [f64; 4] = [0.0, 30.0, 60.0, 85.0];
-const MUS: [f64; 3] = [0.05, 0.02, 0.1];
+use cuesight_host::timed::{CUTS, MUS, SPINS};
 
 /// Final rolling velocity on the cloth (TP A.4): `v − (2/7) u`, `u` the table-contact
 /// slip; unchanged by any friction at the table contact.
