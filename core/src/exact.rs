@@ -20,8 +20,9 @@
 //! * `Δv_y = (2 + 2/ν) dJ_y = 7 dJ_y`, `Δv_z = 2 dJ_z/ν + ΔV_z − ΔU_z`, `Δv_n = 2 dp`;
 //! * the table pushes a ball up only: a downward `dJ_z` on the object ball is cancelled
 //!   by its table normal impulse `dN`, which brings Coulomb friction `μ_s dN` against
-//!   `c` (or the smaller impulse that stops `c`): `T`, with `Δv_n = T_x`, `Δv_y = T_y`,
-//!   `Δv_z = −T_x/ν`, `Δc = (1 + 1/ν) T` (torque `(−R ẑ) × T`);
+//!   `c` at the step's middle (or the smaller impulse that stops `c`; `table_impulse`):
+//!   `T`, with `Δv_n = T_x`, `Δv_y = T_y`, `Δv_z = −T_x/ν`, `Δc = (1 + 1/ν) T` (torque
+//!   `(−R ẑ) × T`); the cue ball's, with μ_ct, likewise;
 //! * friction `|dJ| = μ(|v_t|) dp` against the slip, its direction and size taken at the
 //!   step midpoint (second order); when a step would stop the slip, the impulse that
 //!   zeroes it is solved for and the contact sticks (zero friction from then on — the
@@ -108,40 +109,36 @@ impl<R: Real> Model<R> {
         n.cue_slip_y = s.cue_slip_y - j_y;
         let gain = R::ONE + self.inv_nu; // table-contact slip change per table impulse
         if cue_pressing > R::ZERO && self.mu_ct > R::ZERO {
-            let length = R::sqrt(n.cue_slip_x * n.cue_slip_x + n.cue_slip_y * n.cue_slip_y);
-            if length > R::ZERO {
-                let magnitude = R::min(self.mu_ct * cue_pressing, length / gain);
-                let (t_x, t_y) = (
-                    -magnitude * n.cue_slip_x / length,
-                    -magnitude * n.cue_slip_y / length,
-                );
-                n.cue_table_x = n.cue_table_x + t_x;
-                n.cue_table_y = n.cue_table_y + t_y;
-                // On the cue ball: ΔU = T and R Δω_y = −T_x/ν enter the slips with the
-                // opposite sign to the object ball's.
-                n.normal_velocity = n.normal_velocity - t_x;
-                n.slip_y = n.slip_y - t_y;
-                n.slip_z = n.slip_z - t_x * self.inv_nu;
-                n.cue_slip_x = n.cue_slip_x + gain * t_x;
-                n.cue_slip_y = n.cue_slip_y + gain * t_y;
-            }
+            let (t_x, t_y) = table_impulse(
+                self.mu_ct * cue_pressing,
+                (s.cue_slip_x, s.cue_slip_y),
+                (n.cue_slip_x, n.cue_slip_y),
+                gain,
+            );
+            n.cue_table_x = n.cue_table_x + t_x;
+            n.cue_table_y = n.cue_table_y + t_y;
+            // On the cue ball: ΔU = T and R Δω_y = −T_x/ν enter the slips with the
+            // opposite sign to the object ball's.
+            n.normal_velocity = n.normal_velocity - t_x;
+            n.slip_y = n.slip_y - t_y;
+            n.slip_z = n.slip_z - t_x * self.inv_nu;
+            n.cue_slip_x = n.cue_slip_x + gain * t_x;
+            n.cue_slip_y = n.cue_slip_y + gain * t_y;
         }
         if pressing > R::ZERO && self.mu_s > R::ZERO {
-            let length = R::sqrt(n.table_slip_x * n.table_slip_x + n.table_slip_y * n.table_slip_y);
-            if length > R::ZERO {
-                let magnitude = R::min(self.mu_s * pressing, length / gain);
-                let (t_x, t_y) = (
-                    -magnitude * n.table_slip_x / length,
-                    -magnitude * n.table_slip_y / length,
-                );
-                n.table_x = n.table_x + t_x;
-                n.table_y = n.table_y + t_y;
-                n.normal_velocity = n.normal_velocity + t_x;
-                n.slip_y = n.slip_y + t_y;
-                n.slip_z = n.slip_z - t_x * self.inv_nu;
-                n.table_slip_x = n.table_slip_x + gain * t_x;
-                n.table_slip_y = n.table_slip_y + gain * t_y;
-            }
+            let (t_x, t_y) = table_impulse(
+                self.mu_s * pressing,
+                (s.table_slip_x, s.table_slip_y),
+                (n.table_slip_x, n.table_slip_y),
+                gain,
+            );
+            n.table_x = n.table_x + t_x;
+            n.table_y = n.table_y + t_y;
+            n.normal_velocity = n.normal_velocity + t_x;
+            n.slip_y = n.slip_y + t_y;
+            n.slip_z = n.slip_z - t_x * self.inv_nu;
+            n.table_slip_x = n.table_slip_x + gain * t_x;
+            n.table_slip_y = n.table_slip_y + gain * t_y;
         }
         n
     }
@@ -290,6 +287,38 @@ impl<R: Real> Model<R> {
         }
         (next, false)
     }
+}
+
+/// A table contact's friction impulse over one step: at most `limit` (μ times the
+/// step's normal impulse there), against the contact's slip, which the step's ball–ball
+/// impulses move from `start` to `end`; `gain` the slip change per unit table impulse
+/// (`1 + 1/ν`). Where `limit` can stop the slip it does, along `end`; otherwise it acts
+/// against the slip at the step's middle, `(start + end)/2`. Directed along `end`
+/// alone, the split of each step into the ball–ball impulse and then the table's made
+/// the integration first order where a pressed ball's table contact slides and turns:
+/// on the worst domain scene (seed 16, index 31132: μ 0.92, μ_ct 0.96, the cue ball
+/// pressed) the error was 8.7e-3, 8.6e-4 and 7.4e-5 of U at 24, 240 and 2,400 steps.
+/// No impulse where the end slip's length is zero, or rounds to it: at slips of 1e-20
+/// the f32 squares underflow, and stopping a slip of unknown length there put `Exact`'s
+/// normal impulse 18 % off the f64 one (seed_exact's `an_impact_whose_work_is_subnormal_
+/// solves_in_f32`).
+fn table_impulse<R: Real>(limit: R, start: (R, R), end: (R, R), gain: R) -> (R, R) {
+    let end_length = R::sqrt(end.0 * end.0 + end.1 * end.1);
+    if end_length == R::ZERO {
+        return (R::ZERO, R::ZERO);
+    }
+    if limit * gain >= end_length {
+        return (-end.0 / gain, -end.1 / gain);
+    }
+    let half = R::of(0.5);
+    let (mid_x, mid_y) = (half * (start.0 + end.0), half * (start.1 + end.1));
+    let mid_length = R::sqrt(mid_x * mid_x + mid_y * mid_y);
+    let (along_x, along_y, length) = if mid_length > R::ZERO {
+        (mid_x, mid_y, mid_length)
+    } else {
+        (end.0, end.1, end_length)
+    };
+    (-limit * along_x / length, -limit * along_y / length)
 }
 
 // Not inlined into `model::collide_in` (see `kim_grip::collide`).
