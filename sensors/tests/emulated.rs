@@ -1,11 +1,13 @@
-//! The unchanged LSM6DSOX driver (`sensors/src/lsm6dsox.rs`) on the register model
+//! The unchanged LSM6DSOX driver (`sensors/src/lsm6dsox/`) on the register model
 //! (`sensors/src/emulated/`). Expected values come from the datasheet's register
 //! description (written out here as numbers) and from the samples each test latches.
 
 use cuesight_sensors::emulated::{
     BusError, EmulatedLsm6dsox, LatchReport, Overruns, Sa0, SensorLatch,
 };
-use cuesight_sensors::lsm6dsox::{self, Axis, DataReady, Error, RawSample, RESET_POLLS};
+use cuesight_sensors::lsm6dsox::{
+    self, Axis, DataReady, Error, I2cInterface, RawSample, RESET_POLLS,
+};
 use cuesight_sensors::trace::parse_trace;
 use cuesight_sensors::Lsm6dsox;
 use embedded_hal::i2c::{Error as _, ErrorKind, I2c, NoAcknowledgeSource, Operation};
@@ -17,7 +19,7 @@ const S1: [i16; 6] = [0x1234, -2, 0x7F01, -32768, 32767, 0x0A0B];
 const S2: [i16; 6] = [-0x2345, 0x0102, -3, 0x4321, -0x1111, 1];
 const S3: [i16; 6] = [77, -77, 2049, -1000, 1000, 0];
 
-fn driver(part: &mut EmulatedLsm6dsox) -> Lsm6dsox<&mut EmulatedLsm6dsox> {
+fn driver(part: &mut EmulatedLsm6dsox) -> Lsm6dsox<I2cInterface<&mut EmulatedLsm6dsox>> {
     Lsm6dsox::new(part, A)
 }
 

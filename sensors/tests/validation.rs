@@ -15,8 +15,8 @@ use common::*;
 use cuesight::strike::{Cue, TipOffset};
 use cuesight::{Error as CoreError, Field, Params};
 use cuesight_sensors::lsm6dsox::{
-    trimmed_odr_hz, Error as ImuError, ADDRESS_SA0_HIGH, ADDRESS_SA0_LOW, RESET_POLLS,
-    STANDARD_GRAVITY,
+    trimmed_odr_hz, Error as ImuError, I2cInterface, ADDRESS_SA0_HIGH, ADDRESS_SA0_LOW,
+    RESET_POLLS, STANDARD_GRAVITY,
 };
 use cuesight_sensors::{
     accel_lsb_to_mps2, estimate, estimate_raw, estimate_raw_with_pitch, estimate_with_pitch,
@@ -137,7 +137,7 @@ fn check_rows(rows: Vec<Row>) -> usize {
 fn with_imu(
     address: u8,
     expectations: Vec<Transaction>,
-    f: impl Fn(&mut Lsm6dsox<Mock>) -> Result<(), ImuError<ErrorKind>> + 'static,
+    f: impl Fn(&mut Lsm6dsox<I2cInterface<Mock>>) -> Result<(), ImuError<ErrorKind>> + 'static,
 ) -> impl Fn() -> Result<(), Refusal> + 'static {
     move || {
         let mut i2c = Mock::new(&expectations);
@@ -160,7 +160,7 @@ fn imu_rows() -> Vec<Row> {
             &[&hex, "0x6A", "0x6B", "address"],
         ));
     }
-    type Method = fn(&mut Lsm6dsox<Mock>) -> Result<(), ImuError<ErrorKind>>;
+    type Method = fn(&mut Lsm6dsox<I2cInterface<Mock>>) -> Result<(), ImuError<ErrorKind>>;
     let methods: [(&str, Method); 6] = [
         ("who_am_i", |imu| imu.who_am_i().map(drop)),
         ("data_ready", |imu| imu.data_ready().map(drop)),
