@@ -32,13 +32,14 @@ mod app {
     use cuesight_firmware::board::trace_file::TraceFile;
     use cuesight_firmware::board::{self, pac::Interrupt, timers, uart::Uart};
     use cuesight_firmware::live::feed::{Fed, Feed, SAMPLE_LEN};
+    use cuesight_firmware::live::report::Reporter;
     use cuesight_firmware::live::sampler::Sampler;
-    use cuesight_firmware::live::{metrics, Detected};
+    use cuesight_firmware::live::Detected;
     use cuesight_firmware::{serve, shots};
     use cuesight_link::frame::{FrameReader, MAX_FRAME};
-    use cuesight_link::live::{FollowThrough, LiveReport, LiveStroke, SensorFault, TraceEnd};
+    use cuesight_link::live::{SensorFault, TraceEnd};
     use cuesight_link::SCHEMA_HASH;
-    use cuesight_sensors::StreamEvent;
+    use cuesight_sensors::emulated::EmulatedLsm6dsox;
     use heapless::spsc::{Consumer, Producer, Queue};
     use static_cell::ConstStaticCell;
 
@@ -98,7 +99,7 @@ mod app {
         consumer: Consumer<'static, Item, QUEUE>,
         detected_tx: Producer<'static, Detected, DETECTED>,
         detected_rx: Consumer<'static, Detected, DETECTED>,
-        sampler: Option<Sampler>,
+        sampler: Option<Sampler<EmulatedLsm6dsox>>,
         cost: Cost,
         frames: &'static mut FrameReader,
         answer: &'static mut [u8; MAX_FRAME],
@@ -358,14 +359,13 @@ mod app {
     }
 
     /// Strokes, faults and trace ends from `sample`: the guidance, the unprompted
-    /// report frame, the log.
-    #[task(binds = DUALTIMER, priority = 2, shared = [link, session], local = [detected_rx, report_out, strokes: u32 = 0, last_impact: u64 = u64::MAX])]
+    /// report frame, the log (`live::report`).
+    #[task(binds = DUALTIMER, priority = 2, shared = [link, session], local = [detected_rx, report_out, reporter: Reporter = Reporter::new()])]
     fn report(cx: report::Context) {
         let report::LocalResources {
             detected_rx,
             report_out,
-            strokes,
-            last_impact,
+            reporter,
             ..
         } = cx.local;
         let report::SharedResources {
@@ -374,69 +374,12 @@ mod app {
             ..
         } = cx.shared;
         while let Some(detected) = detected_rx.dequeue() {
-            let report = match detected {
-                Detected::Event {
-                    event: StreamEvent::Stroke(stroke),
-                    at,
-                    lost,
-                    wobble,
-                } => {
-                    *strokes += 1;
-                    *last_impact = stroke.impact_index;
-                    let guidance = session.lock(|s| s.plan_guidance(stroke.cue_speed));
-                    let latency = timers::ticks().wrapping_sub(at) * timers::INSTRUCTIONS_PER_TICK;
-                    defmt::info!(
-                        "stroke {=u32}: cue {=f32} m/s, guidance after {=u32} instructions",
-                        *strokes,
-                        stroke.cue_speed,
-                        latency
-                    );
-                    LiveReport::Stroke(LiveStroke {
-                        stroke: *strokes,
-                        impact_sample: stroke.impact_index + lost,
-                        cue_speed: stroke.cue_speed,
-                        latency_instructions: latency,
-                        // 0.07 °/s per count at ±2000 dps (`cuesight_sensors::lsm6dsox`).
-                        metrics: metrics(&stroke, wobble.rms(0.07)),
-                        guidance,
-                    })
-                }
-                Detected::Event {
-                    event:
-                        StreamEvent::FollowThrough {
-                            impact,
-                            length,
-                            time,
-                        },
-                    ..
-                } => {
-                    // The estimator measures only the strokes it reports, so this is
-                    // the last one; a follow-through of another is not sent.
-                    if impact != *last_impact {
-                        continue;
-                    }
-                    defmt::info!("stroke {=u32}: follow-through {=f32} m", *strokes, length);
-                    LiveReport::FollowThrough(FollowThrough {
-                        stroke: *strokes,
-                        length,
-                        time,
-                    })
-                }
-                Detected::Event {
-                    event: StreamEvent::Fault(fault),
-                    ..
-                } => {
-                    defmt::info!("an impact that is no stroke (the live report says why)");
-                    LiveReport::Fault(fault)
-                }
-                Detected::Sensor(fault) => {
-                    defmt::warn!("IMU fault (the live report says which)");
-                    LiveReport::Sensor(fault)
-                }
-                Detected::End(end) => {
-                    defmt::info!("IMU trace ended");
-                    LiveReport::TraceEnd(end)
-                }
+            let Some(report) = reporter.report(
+                detected,
+                |speed| session.lock(|s| s.plan_guidance(speed)),
+                |at| timers::ticks().wrapping_sub(at) * timers::INSTRUCTIONS_PER_TICK,
+            ) else {
+                continue;
             };
             let len = live_frame(report, &mut report_out[..]);
             let frame = report_out.get(..len).unwrap_or_default();

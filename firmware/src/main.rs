@@ -8,9 +8,10 @@
 //! request, after which it exits with success. Panics and faults exit with failure
 //! (`exit.rs`). Boots under QEMU's `mps2-an386`: `cargo xtask run`.
 //!
-//! With the `live` feature (QEMU only) the firmware is an RTIC 2 application
-//! (`app.rs`): besides the link it samples the emulated IMU and reports each stroke
-//! (the live cue, issue 15). Without it, it serves the link alone from `main`
+//! With the `live` feature (QEMU) the firmware is an RTIC 2 application (`app.rs`):
+//! besides the link it samples the emulated IMU and reports each stroke (the live cue,
+//! issue 15); with `nrf52840-live` the same on the nRF52840 with a real LSM6DSOX
+//! (`app_nrf52840.rs`). Without either, it serves the link alone from `main`
 //! (`blocking.rs`).
 #![no_std]
 #![no_main]
@@ -19,5 +20,7 @@
 
 #[cfg(feature = "live")]
 mod app;
-#[cfg(not(feature = "live"))]
+#[cfg(feature = "nrf52840-live")]
+mod app_nrf52840;
+#[cfg(not(feature = "live-cue"))]
 mod blocking;

@@ -44,39 +44,58 @@ pub fn serve<S: Read + Write>(
     }
 }
 
-/// The link's serial port on the QEMU board, for [`serve`]: UART0, shared with the
-/// tasks that send unprompted frames (an RTIC resource, locked per access). `read`
-/// sleeps in `wfi` until a byte arrives; the UART0 receive task only acknowledges the
-/// interrupt, so the byte waits in the UART (QEMU holds the next one back meanwhile).
-#[cfg(feature = "live")]
+/// A serial port that the link's tasks share (an RTIC resource): the byte at a time
+/// access [`LinkPort`] needs, none of it blocking on the receive side.
+#[cfg(feature = "live-cue")]
+pub trait SharedSerial {
+    /// Whether `wfi` wakes when a byte arrives (the board takes its receive interrupt).
+    /// Without it [`LinkPort`] polls.
+    const WAKES_ON_RECEIVE: bool;
+    /// The next received byte, if one is waiting.
+    fn try_read(&mut self) -> Option<u8>;
+    /// Whether a received byte is waiting (checked with interrupts masked before `wfi`).
+    fn rx_waiting(&mut self) -> bool;
+    /// Sends every byte (blocking).
+    fn write_all(&mut self, bytes: &[u8]);
+}
+
+/// The link's serial port in the live images, for [`serve`]: shared with the tasks that
+/// send unprompted frames (an RTIC resource, locked per access). `read` sleeps in `wfi`
+/// until a byte arrives where the board wakes on one (QEMU: the UART0 receive task only
+/// acknowledges the interrupt, so the byte waits in the UART, and QEMU holds the next
+/// one back meanwhile), and polls otherwise (nRF52840).
+#[cfg(feature = "live-cue")]
 pub struct LinkPort<M> {
     link: M,
 }
 
-#[cfg(feature = "live")]
-impl<M: rtic::Mutex<T = crate::board::uart::Uart>> LinkPort<M> {
-    /// The port over the shared UART.
+#[cfg(feature = "live-cue")]
+impl<M: rtic::Mutex> LinkPort<M> {
+    /// The port over the shared serial port.
     pub fn new(link: M) -> Self {
         Self { link }
     }
 }
 
-#[cfg(feature = "live")]
+#[cfg(feature = "live-cue")]
 impl<M> embedded_io::ErrorType for LinkPort<M> {
     type Error = core::convert::Infallible;
 }
 
-#[cfg(feature = "live")]
-impl<M: rtic::Mutex<T = crate::board::uart::Uart>> Read for LinkPort<M> {
+#[cfg(feature = "live-cue")]
+impl<M: rtic::Mutex> Read for LinkPort<M>
+where
+    M::T: SharedSerial,
+{
     fn read(&mut self, buf: &mut [u8]) -> Result<usize, Self::Error> {
         if buf.is_empty() {
             return Ok(0);
         }
         loop {
-            let count = self.link.lock(|uart| {
+            let count = self.link.lock(|serial| {
                 let mut count = 0;
                 for slot in buf.iter_mut() {
-                    let Some(byte) = uart.try_read() else { break };
+                    let Some(byte) = serial.try_read() else { break };
                     *slot = byte;
                     count += 1;
                 }
@@ -85,22 +104,27 @@ impl<M: rtic::Mutex<T = crate::board::uart::Uart>> Read for LinkPort<M> {
             if count > 0 {
                 return Ok(count);
             }
-            // Checked with interrupts masked: a byte arriving after the check pends the
-            // receive interrupt, which ends the `wfi` (and runs once unmasked).
-            let link = &mut self.link;
-            cortex_m::interrupt::free(|_| {
-                if !link.lock(|uart| uart.rx_full()) {
-                    cortex_m::asm::wfi();
-                }
-            });
+            if M::T::WAKES_ON_RECEIVE {
+                // Checked with interrupts masked: a byte arriving after the check pends
+                // the receive interrupt, which ends the `wfi` (and runs once unmasked).
+                let link = &mut self.link;
+                cortex_m::interrupt::free(|_| {
+                    if !link.lock(|serial| serial.rx_waiting()) {
+                        cortex_m::asm::wfi();
+                    }
+                });
+            }
         }
     }
 }
 
-#[cfg(feature = "live")]
-impl<M: rtic::Mutex<T = crate::board::uart::Uart>> Write for LinkPort<M> {
+#[cfg(feature = "live-cue")]
+impl<M: rtic::Mutex> Write for LinkPort<M>
+where
+    M::T: SharedSerial,
+{
     fn write(&mut self, buf: &[u8]) -> Result<usize, Self::Error> {
-        self.link.lock(|uart| uart.write_all(buf));
+        self.link.lock(|serial| serial.write_all(buf));
         Ok(buf.len())
     }
 

@@ -54,6 +54,15 @@ pub const NRF52840_SHOT: Variant = Variant {
     linted: false,
 };
 
+/// The live cue on the nrf52840 board (issue 15, item 5): RTIC 2, a real LSM6DSOX on
+/// SPIM3 with its data-ready on GPIOTE, the streaming estimator, guidance on impact;
+/// no stroke upload. Built and linted, not run (no hardware).
+pub const NRF52840_LIVE: Variant = Variant {
+    name: "nrf52840-live",
+    features: &["--no-default-features", "--features", "nrf52840-live"],
+    linted: true,
+};
+
 /// The default image with the panic handler replaced by a call to a symbol that exists
 /// nowhere: it links only if no panic path survives optimisation (README, "No panic
 /// path"). Not linted apart: its code is the default image's, which "firmware: clippy"

@@ -31,13 +31,15 @@ mod qemu;
 #[cfg(feature = "qemu")]
 pub use qemu::{exit, init, pac, peak_stack, timers, trace_file, uart, uptime_us, Board, NAME};
 
-#[cfg(feature = "nrf52840")]
+#[cfg(feature = "nrf52840-board")]
 mod nrf52840;
-#[cfg(feature = "nrf52840")]
-pub use nrf52840::{exit, init, peak_stack, uptime_us, NAME};
+#[cfg(feature = "nrf52840-board")]
+pub use nrf52840::{exit, init, peak_stack, uptime_us, Board, CORE_MHZ, NAME};
+#[cfg(feature = "nrf52840-live")]
+pub use nrf52840::{Imu, Link};
 
-#[cfg(not(any(feature = "qemu", feature = "nrf52840")))]
+#[cfg(not(any(feature = "qemu", feature = "nrf52840-board")))]
 compile_error!("select a board with a cargo feature: `qemu` (the default) or `nrf52840`");
 
-#[cfg(all(feature = "qemu", feature = "nrf52840"))]
+#[cfg(all(feature = "qemu", feature = "nrf52840-board"))]
 compile_error!("select one board: `qemu` is the default, so build `nrf52840` with `--no-default-features --features nrf52840`");

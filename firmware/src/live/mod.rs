@@ -1,8 +1,11 @@
 //! The live cue (issue 15): IMU samples in, strokes out. [`feed`] decodes the trace
 //! the QEMU board receives, [`sampler`] runs the part, the driver and the streaming
-//! estimator; the RTIC app (`app.rs`) paces them and reports.
+//! estimator, [`report`] turns what it detects into the live report; the RTIC apps
+//! (`app.rs` on QEMU, `app_nrf52840.rs` on the nRF52840) pace them and send the reports.
 
 pub mod feed;
+#[cfg(feature = "live-cue")]
+pub mod report;
 pub mod sampler;
 
 use cuesight_link::live::{SensorFault, StrokeMetrics, TraceEnd};
@@ -11,8 +14,8 @@ use cuesight_sensors::{StreamEvent, StreamStroke};
 /// What the sampling task hands to the reporting task.
 #[derive(Clone, Copy)]
 pub enum Detected {
-    /// The estimator's report, and the TIMER0 ticks when the interrupt that delivered
-    /// the detecting sample began.
+    /// The estimator's report, and the board's clock (QEMU: TIMER0 ticks; nRF52840:
+    /// DWT cycles) when the interrupt that delivered the detecting sample began.
     Event {
         /// The report.
         event: StreamEvent,
@@ -33,7 +36,7 @@ pub enum Detected {
 impl Detected {
     /// The estimator's `event`, detected on the sample whose interrupt began at `at`.
     #[inline(never)]
-    pub fn event(sampler: &sampler::Sampler, event: StreamEvent, at: u32) -> Self {
+    pub fn event<P>(sampler: &sampler::Sampler<P>, event: StreamEvent, at: u32) -> Self {
         Detected::Event {
             event,
             at,

@@ -1,26 +1,28 @@
 //! The IMU sampling step: a sample arrives at the LSM6DSOX (on QEMU, latched into the
-//! emulated part from the trace), the unchanged driver reads it over the embedded-hal
-//! I²C bus, and the streaming estimator takes the along-cue acceleration `ax` and the
-//! pitch rate `gy` (`docs/sensors.md`). O(1) per sample, no buffer.
+//! emulated part from the trace; on the nRF52840, the real part on SPI), the unchanged
+//! driver reads it over the embedded-hal bus, and the streaming estimator takes the
+//! along-cue acceleration `ax` and the pitch rate `gy` (`docs/sensors.md`). O(1) per
+//! sample, no buffer.
 
 use cuesight_sensors::emulated::{BusError, EmulatedLsm6dsox, Sa0, SensorLatch};
-use cuesight_sensors::lsm6dsox::{Error as ImuError, ADDRESS_SA0_LOW};
+use cuesight_sensors::lsm6dsox::{Error as ImuError, Interface, ADDRESS_SA0_LOW};
 use cuesight_sensors::{
     Lsm6dsox, StreamConfig, StreamConfigError, StreamEvent, StreamingEstimator, Wobble,
 };
 
-/// Why sampling could not start.
+/// Why sampling could not start (`E`: the bus's error).
 #[derive(Clone, Copy, Debug, defmt::Format)]
-pub enum StartError {
+pub enum StartError<E> {
     /// The part did not come up (chip id, reset, bus).
-    Imu(ImuError<BusError>),
+    Imu(ImuError<E>),
     /// The rate is not one the estimator takes.
     Rate(StreamConfigError),
 }
 
-/// The part, its bus and the estimator.
-pub struct Sampler {
-    part: EmulatedLsm6dsox,
+/// The part (`P`: the emulated part, or the driver on the real part's bus) and the
+/// estimator.
+pub struct Sampler<P> {
+    part: P,
     estimator: StreamingEstimator,
     /// The yaw rate's spread over the stroke in progress (restarted when one starts).
     wobble: Wobble,
@@ -29,7 +31,7 @@ pub struct Sampler {
     lost: u64,
 }
 
-impl Sampler {
+impl Sampler<EmulatedLsm6dsox> {
     /// Brings the part up with the driver's `init` (chip id, reset, 6.66 kHz ±16 g /
     /// ±2000 dps, block data update) and an estimator for `rate_hz`, into `slot`
     /// (`None` if either fails).
@@ -37,29 +39,13 @@ impl Sampler {
     /// Fills the slot rather than returning the sampler: a 1.6 KB `Result` moved into
     /// an `Option` is copied twice more (flash and stack in the sampling interrupt).
     #[inline(never)]
-    pub fn start(slot: &mut Option<Self>, rate_hz: f32) -> Result<(), StartError> {
+    pub fn start(slot: &mut Option<Self>, rate_hz: f32) -> Result<(), StartError<BusError>> {
         *slot = None;
         let mut part = EmulatedLsm6dsox::new(Sa0::Low);
         Lsm6dsox::new(&mut part, ADDRESS_SA0_LOW)
             .init()
             .map_err(StartError::Imu)?;
-        #[allow(unused_mut)] // without the `live` feature
-        let mut config = StreamConfig::new(rate_hz);
-        // Each reported stroke's follow-through, once the cue is still again (the
-        // `live` feature turns the estimator's `follow-through` feature on; this module
-        // is compiled, not linked, in the other images).
-        #[cfg(feature = "live")]
-        {
-            config.follow_through = true;
-        }
-        let estimator = StreamingEstimator::new(&config).map_err(StartError::Rate)?;
-        *slot = Some(Self {
-            part,
-            estimator,
-            wobble: Wobble::new(),
-            lost: 0,
-        });
-        Ok(())
+        Self::fill(slot, part, rate_hz)
     }
 
     /// The conversion: the part latches `words` (`[ax, ay, az, gx, gy, gz]`) and
@@ -72,6 +58,35 @@ impl Sampler {
     pub fn read(&mut self) -> Result<[i16; 3], ImuError<BusError>> {
         let sample = Lsm6dsox::new(&mut self.part, ADDRESS_SA0_LOW).read_raw()?;
         Ok([sample.accel[0], sample.gyro[1], sample.gyro[2]])
+    }
+
+    /// Fault injection (the bad-input cases of issue 15): a failing bus, a stalled part.
+    pub fn set_faults(&mut self, bus_failing: bool, stalled: bool) {
+        self.part.set_bus_failing(bus_failing);
+        self.part.set_stalled(stalled);
+    }
+}
+
+impl<P> Sampler<P> {
+    /// An estimator for `rate_hz` beside `part`, into `slot`.
+    fn fill<E>(slot: &mut Option<Self>, part: P, rate_hz: f32) -> Result<(), StartError<E>> {
+        #[allow(unused_mut)] // without the live images' features
+        let mut config = StreamConfig::new(rate_hz);
+        // Each reported stroke's follow-through, once the cue is still again (the
+        // `live-cue` feature turns the estimator's `follow-through` feature on; this
+        // module is compiled, not linked, in the other images).
+        #[cfg(feature = "live-cue")]
+        {
+            config.follow_through = true;
+        }
+        let estimator = StreamingEstimator::new(&config).map_err(StartError::Rate)?;
+        *slot = Some(Self {
+            part,
+            estimator,
+            wobble: Wobble::new(),
+            lost: 0,
+        });
+        Ok(())
     }
 
     /// The estimator's step (the along-cue acceleration `ax`, the pitch rate `gy`), and
@@ -116,10 +131,28 @@ impl Sampler {
     pub fn trace_index(&self, estimator_index: u64) -> u64 {
         estimator_index + self.lost
     }
+}
 
-    /// Fault injection (the bad-input cases of issue 15): a failing bus, a stalled part.
-    pub fn set_faults(&mut self, bus_failing: bool, stalled: bool) {
-        self.part.set_bus_failing(bus_failing);
-        self.part.set_stalled(stalled);
+impl<B: Interface> Sampler<Lsm6dsox<B>> {
+    /// Brings a real part up with the driver's `init` (as [`Sampler::start`]), routes
+    /// its accelerometer data-ready to INT1 as a 75 µs pulse per sample (a lost read
+    /// does not hold the line high: the next sample pulses again), and fills `slot` with
+    /// an estimator at the part's trimmed output data rate.
+    pub fn start_part(
+        slot: &mut Option<Self>,
+        mut part: Lsm6dsox<B>,
+    ) -> Result<(), StartError<B::Error>> {
+        *slot = None;
+        part.init().map_err(StartError::Imu)?;
+        part.enable_accel_data_ready_int1_pulsed()
+            .map_err(StartError::Imu)?;
+        let rate_hz = part.odr_hz();
+        Self::fill(slot, part, rate_hz)
+    }
+
+    /// The driver reads the sample over the bus: `[ax, gy, gz]`.
+    pub fn read(&mut self) -> Result<[i16; 3], ImuError<B::Error>> {
+        let sample = self.part.read_raw()?;
+        Ok([sample.accel[0], sample.gyro[1], sample.gyro[2]])
     }
 }

@@ -8,8 +8,9 @@ use embedded_hal::spi::{Operation, SpiDevice};
 
 use super::{Error, ADDRESS_SA0_HIGH, ADDRESS_SA0_LOW};
 
-/// SPI: the read/write bit of the address byte (1 = read).
-const SPI_READ: u8 = 0x80;
+/// SPI: the read/write bit of the address byte (1 = read; datasheet §6.2): a read
+/// sends `SPI_READ | address`, a write `address` with it clear.
+pub const SPI_READ: u8 = 0x80;
 
 /// A bus to the part's registers.
 pub trait Interface {

@@ -8,6 +8,7 @@
 //!
 //! | register | addr | access | value written / meaning |
 //! |---|---|---|---|
+//! | `COUNTER_BDR_REG1` | `0x0B` | rw | `0x80` = `dataready_pulsed`: data-ready as a 75 µs pulse per sample, not latched until read (optional, [`Lsm6dsox::enable_accel_data_ready_int1_pulsed`]) |
 //! | `INT1_CTRL` | `0x0D` | rw | `0x01` = `INT1_DRDY_XL`: accelerometer data-ready on INT1 (optional, [`Lsm6dsox::enable_accel_data_ready_int1`]) |
 //! | `WHO_AM_I` | `0x0F` | r | must read `0x6C` |
 //! | `CTRL1_XL` | `0x10` | rw | `0xA4`: `ODR_XL = 1010` (6.66 kHz, high-performance), `FS_XL = 01` (±16 g), `LPF2_XL_EN = 0` |
@@ -52,7 +53,7 @@ use embedded_hal::i2c::I2c;
 use embedded_hal::spi::SpiDevice;
 
 mod interface;
-pub use interface::{I2cInterface, Interface, SpiInterface};
+pub use interface::{I2cInterface, Interface, SpiInterface, SPI_READ};
 
 /// 7-bit I²C address with `SA0` tied low.
 pub const ADDRESS_SA0_LOW: u8 = 0x6A;
@@ -65,6 +66,8 @@ pub const WHO_AM_I_VALUE: u8 = 0x6C;
 pub mod reg {
     /// Interrupt 1 routing.
     pub const INT1_CTRL: u8 = 0x0D;
+    /// `COUNTER_BDR_REG1`: bit 7 `dataready_pulsed`.
+    pub const COUNTER_BDR_REG1: u8 = 0x0B;
     /// Device identification, reads [`super::WHO_AM_I_VALUE`].
     pub const WHO_AM_I: u8 = 0x0F;
     /// Accelerometer control: ODR, full scale.
@@ -99,6 +102,9 @@ pub mod value {
     pub const CTRL2_G_6667HZ_2000DPS: u8 = 0xAC;
     /// `INT1_CTRL`: accelerometer data-ready on INT1.
     pub const INT1_DRDY_XL: u8 = 0x01;
+    /// `COUNTER_BDR_REG1`: `dataready_pulsed` (a 75 µs pulse per sample on the
+    /// data-ready line instead of a level held until the data are read).
+    pub const COUNTER_BDR_REG1_DRDY_PULSED: u8 = 0x80;
 }
 
 /// Nominal output data rate configured by [`Lsm6dsox::init`] (Hz).
@@ -261,7 +267,9 @@ impl<S: SpiDevice> Lsm6dsox<SpiInterface<S>> {
 }
 
 impl<B: Interface> Lsm6dsox<B> {
-    fn with_interface(bus: B) -> Self {
+    /// The driver on any bus to the part's registers (a board's own [`Interface`]); no
+    /// traffic until [`Lsm6dsox::init`].
+    pub fn with_interface(bus: B) -> Self {
         Self {
             bus,
             odr_hz: NOMINAL_ODR_HZ,
@@ -310,6 +318,15 @@ impl<B: Interface> Lsm6dsox<B> {
     /// Route the accelerometer data-ready signal to the INT1 pin.
     pub fn enable_accel_data_ready_int1(&mut self) -> Result<(), Error<B::Error>> {
         self.write(reg::INT1_CTRL, value::INT1_DRDY_XL)
+    }
+
+    /// Route the accelerometer data-ready signal to the INT1 pin as a 75 µs pulse per
+    /// sample (`dataready_pulsed`): an edge-triggered input sees every sample, and a
+    /// read that fails does not leave the line high (which latched mode would, stopping
+    /// every later edge).
+    pub fn enable_accel_data_ready_int1_pulsed(&mut self) -> Result<(), Error<B::Error>> {
+        self.write(reg::COUNTER_BDR_REG1, value::COUNTER_BDR_REG1_DRDY_PULSED)?;
+        self.enable_accel_data_ready_int1()
     }
 
     /// Read the data-ready flags.

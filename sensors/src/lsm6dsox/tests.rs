@@ -172,6 +172,7 @@ mod spi {
         expected.extend(write(0x10, 0xA4));
         expected.extend(write(0x11, 0xAC));
         expected.extend(read(0xE3, vec![0x0A]));
+        expected.extend(write(0x0B, 0x80));
         expected.extend(write(0x0D, 0x01));
         expected.extend(read(
             0xA2,
@@ -185,7 +186,7 @@ mod spi {
         imu.init().unwrap();
         // +10 trim → +1.5 %.
         assert!((imu.odr_hz() - 6767.005).abs() < 0.01, "{}", imu.odr_hz());
-        imu.enable_accel_data_ready_int1().unwrap();
+        imu.enable_accel_data_ready_int1_pulsed().unwrap();
         let sample = imu.read_raw().unwrap();
         assert_eq!(sample.gyro, [1000, -1, 0]);
         assert_eq!(sample.accel, [2049, -32768, 32767]);

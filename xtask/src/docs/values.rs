@@ -145,6 +145,17 @@ pub(super) fn value(name: &str) -> Result<String> {
             thousands(sizes_of(&crate::images::NRF52840_SHOT.build()?).map(|s| s.text + s.data)?)
         }
         "live-flash" => thousands(live_sizes().map(|s| s.text + s.data)?),
+        "nrf52840-live-flash" => {
+            thousands(sizes_of(&crate::images::NRF52840_LIVE.build()?).map(|s| s.text + s.data)?)
+        }
+        "nrf52840-live-flash-over-budget" => {
+            let flash =
+                sizes_of(&crate::images::NRF52840_LIVE.build()?).map(|s| s.text + s.data)?;
+            thousands(flash.saturating_sub(size::FLASH_BUDGET))
+        }
+        "nrf52840-live-static-ram" => {
+            thousands(sizes_of(&crate::images::NRF52840_LIVE.build()?).map(|s| s.data + s.bss)?)
+        }
         "live-static-ram" => thousands(live_sizes().map(|s| s.data + s.bss)?),
         "live-flash-under-budget" => {
             let flash = live_sizes().map(|s| s.text + s.data)?;

@@ -16,6 +16,9 @@
 //! * **Exit:** a breakpoint (`bkpt`), where `probe-rs run` stops and reports; without a
 //!   debugger attached the core then sleeps.
 //! * **Stack:** painted at boot, so [`peak_stack`] can tell how deep it went.
+//! * **IMU** (the `nrf52840-live` image, [`live`]): an LSM6DSOX on SPIM3 at 8 MHz, mode
+//!   3 (SCK P1.15, MOSI P1.13, MISO P1.14, CS P1.12: the DK's Arduino header D13, D11,
+//!   D12, D10), its INT1 data-ready on P1.03 (D2) through GPIOTE channel 0.
 
 use defmt_rtt as _;
 use nrf52840_hal::clocks::Clocks;
@@ -26,18 +29,28 @@ use nrf52840_hal::uarte::{self, Baudrate, Parity, Uarte};
 use super::stack;
 pub use stack::peak as peak_stack;
 
+#[cfg(feature = "live-cue")]
+mod live;
+#[cfg(not(feature = "live-cue"))]
+mod serial;
+#[cfg(feature = "live-cue")]
+pub use live::{init, Board, Imu, Link};
+#[cfg(not(feature = "live-cue"))]
+pub use serial::Serial;
+
 /// The board, as reported by `version`.
 pub const NAME: &str = "nrf52840";
 
-/// The board's peripherals, as the firmware uses them.
 /// Core clock (MHz): the DWT cycle counter's rate.
-const CORE_MHZ: u32 = 64;
+pub const CORE_MHZ: u32 = 64;
 
 /// Microseconds since [`init`] started the DWT cycle counter (0 before).
 pub fn uptime_us() -> u64 {
     super::clock::micros(cortex_m::peripheral::DWT::cycle_count(), CORE_MHZ)
 }
 
+/// The board's peripherals, as the firmware uses them: the link's serial port.
+#[cfg(not(feature = "live-cue"))]
 pub struct Board {
     /// The protocol's serial port.
     pub serial: Serial,
@@ -45,7 +58,32 @@ pub struct Board {
 
 /// Takes the peripherals, starts the HFXO and sets up UARTE0; a second call exits with
 /// failure.
+#[cfg(not(feature = "live-cue"))]
 pub fn init() -> Board {
+    // The live cue's peripherals stay unused in this image.
+    let (_, uarte) = common();
+    if let Some(mut core) = cortex_m::Peripherals::take() {
+        start_cycle_counter(&mut core.DCB, &mut core.DWT);
+    }
+    Board {
+        serial: Serial::new(uarte),
+    }
+}
+
+/// The log's timestamps and the live cue's latency: the DWT cycle counter (64 MHz core
+/// clock).
+pub fn start_cycle_counter(
+    dcb: &mut cortex_m::peripheral::DCB,
+    dwt: &mut cortex_m::peripheral::DWT,
+) {
+    dcb.enable_trace();
+    dwt.enable_cycle_counter();
+}
+
+/// Paints the stack, takes the peripherals, starts the HFXO and sets up UARTE0
+/// (115,200 baud, TXD P0.06, RXD P0.08); a second call exits with failure. Returns
+/// the peripherals not used here.
+fn common() -> (Peripherals, Uarte<pac::UARTE0>) {
     stack::paint();
     let Some(p) = pac::Peripherals::take() else {
         defmt::error!("board::init called twice");
@@ -53,11 +91,6 @@ pub fn init() -> Board {
     };
     // The clocks stay configured for the life of the program.
     let _clocks = Clocks::new(p.CLOCK).enable_ext_hfosc();
-    // The log's timestamps: the DWT cycle counter (64 MHz core clock).
-    if let Some(mut core) = cortex_m::Peripherals::take() {
-        core.DCB.enable_trace();
-        core.DWT.enable_cycle_counter();
-    }
     let port0 = p0::Parts::new(p.P0);
     let pins = uarte::Pins {
         txd: port0.p0_06.into_push_pull_output(Level::High).degrade(),
@@ -66,80 +99,22 @@ pub fn init() -> Board {
         rts: None,
     };
     let uarte = Uarte::new(p.UARTE0, pins, Parity::EXCLUDED, Baudrate::BAUD115200);
-    Board {
-        serial: Serial {
-            uarte,
-            tx: [0; TX_CHUNK],
+    (
+        Peripherals {
+            p1: p.P1,
+            spim3: p.SPIM3,
+            gpiote: p.GPIOTE,
         },
-    }
+        uarte,
+    )
 }
 
-/// Bytes per UARTE transmission: EasyDMA reads only RAM, so every write is copied
-/// through this buffer first (the caller's bytes may be in flash).
-const TX_CHUNK: usize = 64;
-
-/// UARTE0, blocking, as `embedded_io::Read + Write`.
-pub struct Serial {
-    uarte: Uarte<pac::UARTE0>,
-    tx: [u8; TX_CHUNK],
-}
-
-/// A UARTE error (framing, overrun, a buffer EasyDMA refused).
-#[derive(Debug)]
-pub struct SerialError(pub uarte::Error);
-
-impl core::fmt::Display for SerialError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        write!(f, "UARTE0: {:?}", self.0)
-    }
-}
-
-impl core::error::Error for SerialError {}
-
-impl embedded_io::Error for SerialError {
-    fn kind(&self) -> embedded_io::ErrorKind {
-        embedded_io::ErrorKind::Other
-    }
-}
-
-impl embedded_io::ErrorType for Serial {
-    type Error = SerialError;
-}
-
-impl embedded_io::Read for Serial {
-    /// Blocks for exactly one byte (an EasyDMA receive completes only when its buffer
-    /// is full, so reading more would wait for bytes that may never come).
-    fn read(&mut self, buf: &mut [u8]) -> Result<usize, SerialError> {
-        let Some(first) = buf.first_mut() else {
-            return Ok(0);
-        };
-        let mut byte = [0u8; 1]; // on the stack: RAM, as EasyDMA needs
-        self.uarte.read(&mut byte).map_err(SerialError)?;
-        *first = byte[0];
-        Ok(1)
-    }
-}
-
-impl embedded_io::Write for Serial {
-    fn write(&mut self, buf: &[u8]) -> Result<usize, SerialError> {
-        let Some(chunk) = buf.get(..buf.len().min(TX_CHUNK)) else {
-            return Ok(0);
-        };
-        if chunk.is_empty() {
-            return Ok(0);
-        }
-        let Some(tx) = self.tx.get_mut(..chunk.len()) else {
-            return Ok(0);
-        };
-        tx.copy_from_slice(chunk);
-        self.uarte.write(tx).map_err(SerialError)?;
-        Ok(chunk.len())
-    }
-
-    fn flush(&mut self) -> Result<(), SerialError> {
-        // `Uarte::write` returns once the transmission has ended.
-        Ok(())
-    }
+/// The peripherals `init` leaves to the live cue.
+#[allow(dead_code)] // without the live cue
+struct Peripherals {
+    p1: pac::P1,
+    spim3: pac::SPIM3,
+    gpiote: pac::GPIOTE,
 }
 
 /// Ends the program: a breakpoint for the debugger (`probe-rs run` stops there; the

@@ -130,3 +130,21 @@ impl embedded_io::Write for Uart {
         Ok(())
     }
 }
+
+/// The live image's link: `LinkPort` sleeps until UART0's receive interrupt.
+#[cfg(feature = "live")]
+impl crate::serve::SharedSerial for Uart {
+    const WAKES_ON_RECEIVE: bool = true;
+
+    fn try_read(&mut self) -> Option<u8> {
+        Uart::try_read(self)
+    }
+
+    fn rx_waiting(&mut self) -> bool {
+        self.rx_full()
+    }
+
+    fn write_all(&mut self, bytes: &[u8]) {
+        Uart::write_all(self, bytes)
+    }
+}
