@@ -69,6 +69,7 @@ impl Sampler<EmulatedLsm6dsox> {
 
 impl<P> Sampler<P> {
     /// An estimator for `rate_hz` beside `part`, into `slot`.
+    #[inline(always)]
     fn fill<E>(slot: &mut Option<Self>, part: P, rate_hz: f32) -> Result<(), StartError<E>> {
         #[allow(unused_mut)] // without the live images' features
         let mut config = StreamConfig::new(rate_hz);

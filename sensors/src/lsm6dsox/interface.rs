@@ -52,12 +52,14 @@ impl<I> I2cInterface<I> {
 impl<I: I2c> Interface for I2cInterface<I> {
     type Error = I::Error;
 
+    #[inline(always)]
     fn write_register(&mut self, register: u8, value: u8) -> Result<(), Error<I::Error>> {
         let address = self.checked_address()?;
         self.i2c.write(address, &[register, value])?;
         Ok(())
     }
 
+    #[inline(always)]
     fn read_registers(&mut self, first: u8, buf: &mut [u8]) -> Result<(), Error<I::Error>> {
         let address = self.checked_address()?;
         self.i2c.write_read(address, &[first], buf)?;
