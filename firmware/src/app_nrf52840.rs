@@ -9,8 +9,8 @@
 //!
 //! The part is brought up in `init` (chip id, reset, 6.66 kHz at ±16 g / ±2000 dps, its
 //! ODR trim read, data-ready on INT1 as a pulse), and sampling runs from then on. A part
-//! that does not come up is reported (`sensor: not_started`) on the link once the host
-//! is there... and the link goes on without a live cue. A failed read loses its
+//! that does not come up is reported (`sensor: not_started`, queued at boot, sent when
+//! the reporting task first runs), and the link goes on without a live cue. A failed read loses its
 //! sample and is reported once per run of failures, as under QEMU.
 //!
 //! Latencies are in DWT cycles at 64 MHz (at least one per instruction on the
@@ -18,7 +18,8 @@
 //!
 //! Not measured here (no hardware): the per-sample cost, the latency, and whether the
 //! pins are right on a given board. What the build proves: the image links within the
-//! flash and RAM budgets (`cargo xtask test`, step "firmware: nrf52840 board").
+//! flash and RAM budgets (`cargo xtask test`, step "firmware: nrf52840 board"). A
+//! stalled part (no data-ready) is not detected: no interrupt comes.
 
 /// The firmware name and version, as `version` reports them.
 pub const FIRMWARE: &str = concat!(env!("CARGO_PKG_NAME"), " ", env!("CARGO_PKG_VERSION"));

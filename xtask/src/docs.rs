@@ -220,7 +220,7 @@ fn within_layout_slack(spec: &str, was: &str, now: &str) -> bool {
         "value live-flash",
         "value live-flash-under-budget",
         "value nrf52840-live-flash",
-        "value nrf52840-live-flash-over-budget",
+        "value nrf52840-live-flash-under-budget",
     ];
     let number = |s: &str| s.replace(',', "").trim().parse::<u64>().ok();
     let (was, now) = match (number(was), number(now)) {

@@ -88,41 +88,11 @@ pub fn check_budgets(elf: &Path) -> Result {
     check(elf, Some(FLASH_TARGET))
 }
 
-/// The live image (issue 15): flash within [`FLASH_BUDGET`] and static RAM within
-/// [`STATIC_RAM_BUDGET`] (issue 14's 44 KiB target is the link image's).
+/// The live images (issue 15; QEMU and nrf52840): flash within [`FLASH_BUDGET`] and
+/// static RAM within [`STATIC_RAM_BUDGET`] (issue 14's 44 KiB target is the link
+/// image's).
 pub fn check_live_budgets(elf: &Path) -> Result {
     check(elf, None)
-}
-
-/// The nrf52840 live image (issue 15, item 5): static RAM held to
-/// [`STATIC_RAM_BUDGET`]; flash measured against [`FLASH_BUDGET`] and reported, not
-/// held: it is over (README, "nRF52840"; issue 15 open on it), and a step that fails on
-/// it would stop CI on a known, documented shortfall. The figure is recorded in the
-/// README by `cargo xtask docs` (`nrf52840-live-flash`), so a change shows.
-pub fn check_ram_report_flash(elf: &Path) -> Result {
-    report(elf)?;
-    let bytes =
-        std::fs::read(elf).map_err(|e| Failure::new(format!("reading {}: {e}", elf.display())))?;
-    let s = sizes(&bytes).ok_or_else(|| Failure::new("not a 32-bit ELF"))?;
-    let (flash, ram) = (s.text + s.data, s.data + s.bss);
-    if ram > STATIC_RAM_BUDGET {
-        return Err(Failure::new(format!(
-            "static RAM {ram} bytes exceeds the budget of {STATIC_RAM_BUDGET}"
-        )));
-    }
-    println!("static RAM {ram} bytes: within the budget of {STATIC_RAM_BUDGET}");
-    if flash > FLASH_BUDGET {
-        println!(
-            "flash {flash} bytes: OVER the budget of {FLASH_BUDGET} by {} (issue 15: not met on this board; README, \"nRF52840\")",
-            flash - FLASH_BUDGET
-        );
-    } else {
-        println!(
-            "flash {flash} bytes: within the budget of {FLASH_BUDGET} ({} to spare)",
-            FLASH_BUDGET - flash
-        );
-    }
-    Ok(())
 }
 
 /// The budgets, and `target` (a flash target below the budget) if given.

@@ -148,10 +148,10 @@ pub(super) fn value(name: &str) -> Result<String> {
         "nrf52840-live-flash" => {
             thousands(sizes_of(&crate::images::NRF52840_LIVE.build()?).map(|s| s.text + s.data)?)
         }
-        "nrf52840-live-flash-over-budget" => {
+        "nrf52840-live-flash-under-budget" => {
             let flash =
                 sizes_of(&crate::images::NRF52840_LIVE.build()?).map(|s| s.text + s.data)?;
-            thousands(flash.saturating_sub(size::FLASH_BUDGET))
+            thousands(size::FLASH_BUDGET.saturating_sub(flash))
         }
         "nrf52840-live-static-ram" => {
             thousands(sizes_of(&crate::images::NRF52840_LIVE.build()?).map(|s| s.data + s.bss)?)

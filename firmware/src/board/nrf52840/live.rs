@@ -20,17 +20,17 @@
 //! `SpiDevice` (embedded-hal-bus's `ExclusiveDevice` walks a list of operations: 764 B
 //! of flash for this image, where the flash budget has none to spare).
 
-use cuesight_link::frame::MAX_FRAME;
+use core::sync::atomic::{compiler_fence, Ordering};
 use cuesight_sensors::lsm6dsox::{Error as ImuError, Interface, SPI_READ};
 use cuesight_sensors::Lsm6dsox;
 use nrf52840_hal::gpio::{p1, Floating, Input, Level, Output, Pin, PushPull};
 use nrf52840_hal::gpiote::Gpiote;
 use nrf52840_hal::pac;
+
 use nrf52840_hal::spim::{self, Frequency, Spim, MODE_3};
-use nrf52840_hal::uarte::{UarteRx, UarteTx};
 use static_cell::ConstStaticCell;
 
-use super::{common, exit, start_cycle_counter};
+use super::{common, exit, start_cycle_counter, Serial};
 
 /// The driver on the part's SPI bus.
 pub type Imu = Lsm6dsox<ImuSpi>;
@@ -73,15 +73,8 @@ impl Interface for ImuSpi {
     }
 }
 
-/// Bytes UARTE0 sends per EasyDMA transfer (it reads RAM only, so frames are copied
-/// through this buffer).
-const TX_BUFFER: usize = 64;
-static TX: ConstStaticCell<[u8; TX_BUFFER]> = ConstStaticCell::new([0; TX_BUFFER]);
+/// The byte UARTE0's EasyDMA receives into (RAM, at a fixed place).
 static RX: ConstStaticCell<[u8; 1]> = ConstStaticCell::new([0; 1]);
-
-// A frame fits the EasyDMA transfer counter many times over; nothing to check but that
-// the link's largest frame is not empty.
-const _: () = assert!(MAX_FRAME > TX_BUFFER);
 
 /// The live cue's peripherals.
 pub struct Board {
@@ -99,12 +92,8 @@ pub struct Board {
 pub fn init(core: &mut cortex_m::Peripherals) -> Board {
     let (p, uarte) = common();
     start_cycle_counter(&mut core.DCB, &mut core.DWT);
-    let (Some(tx), Some(rx)) = (TX.try_take(), RX.try_take()) else {
+    let Some(rx) = RX.try_take() else {
         defmt::error!("board::init called twice");
-        exit(false);
-    };
-    let Ok((tx, rx)) = uarte.split(tx, rx) else {
-        defmt::error!("UARTE0: the EasyDMA buffers were refused");
         exit(false);
     };
     let port1 = p1::Parts::new(p.p1);
@@ -123,46 +112,80 @@ pub fn init(core: &mut cortex_m::Peripherals) -> Board {
         .lo_to_hi()
         .enable_interrupt();
     Board {
-        link: Link { tx, rx },
+        link: Link {
+            serial: Serial::new(uarte),
+            rx,
+            receiving: false,
+        },
         imu: Lsm6dsox::with_interface(ImuSpi { spim, chip_select }),
         gpiote,
     }
 }
 
 /// UARTE0 for the shared link: reads never block (EasyDMA receives one byte at a time
-/// in the background), writes do.
+/// in the background, as nrf52840-hal's `UarteRx` does), writes do ([`Serial`]'s).
+///
+/// Not nrf52840-hal's `Uarte::split`: its halves index their buffers (slices of a
+/// length unknown at compile time), and those bounds checks' panics bring `core::fmt`'s
+/// integer formatting (about 0.9 KB) into an image that has no flash to spare.
 pub struct Link {
-    tx: UarteTx<pac::UARTE0>,
-    rx: UarteRx<pac::UARTE0>,
+    serial: Serial,
+    rx: &'static mut [u8; 1],
+    /// A one-byte reception has been started and not yet taken.
+    receiving: bool,
+}
+
+impl Link {
+    /// UARTE0's registers, for the receive side.
+    fn registers() -> &'static pac::uarte0::RegisterBlock {
+        // SAFETY: the link owns UARTE0 (inside `serial`), so nothing else uses these
+        // registers; `Serial` touches only the transmit ones.
+        #[allow(unsafe_code)]
+        unsafe {
+            &*pac::UARTE0::ptr()
+        }
+    }
 }
 
 impl crate::serve::SharedSerial for Link {
-    /// The link task polls: UARTE0's interrupt is not taken (its receive event stays
-    /// for `try_read`), so `wfi` would not wake on a byte.
+    /// The link task polls: UARTE0's interrupt is not taken, so `wfi` would not wake on
+    /// a byte.
     const WAKES_ON_RECEIVE: bool = false;
 
     fn try_read(&mut self) -> Option<u8> {
         if !self.rx_waiting() {
             return None;
         }
-        let mut byte = [0u8; 1];
-        match embedded_io_06::Read::read(&mut self.rx, &mut byte) {
-            Ok(1) => Some(byte[0]),
-            _ => None,
-        }
+        let uarte = Self::registers();
+        uarte.events_endrx.reset();
+        uarte.events_rxstarted.reset();
+        // EasyDMA has written the byte: read it only after the event.
+        compiler_fence(Ordering::SeqCst);
+        self.receiving = false;
+        (uarte.rxd.amount.read().bits() == 1).then_some(self.rx[0])
     }
 
     fn rx_waiting(&mut self) -> bool {
-        // Starts the next one-byte reception when none is under way.
-        matches!(
-            embedded_io_06::ReadReady::read_ready(&mut self.rx),
-            Ok(true)
-        )
+        let uarte = Self::registers();
+        if !self.receiving {
+            // The next one-byte reception: EasyDMA writes it into `rx`.
+            compiler_fence(Ordering::SeqCst);
+            let address = self.rx.as_mut_ptr() as u32;
+            #[allow(unsafe_code)]
+            // SAFETY: `rx` is a static byte in RAM, one long, as MAXCNT says.
+            uarte.rxd.ptr.write(|w| unsafe { w.ptr().bits(address) });
+            #[allow(unsafe_code)]
+            // SAFETY: 1 fits the MAXCNT field.
+            uarte.rxd.maxcnt.write(|w| unsafe { w.maxcnt().bits(1) });
+            uarte.tasks_startrx.write(|w| w.tasks_startrx().set_bit());
+            self.receiving = true;
+            return false;
+        }
+        uarte.events_endrx.read().bits() != 0
     }
 
     fn write_all(&mut self, bytes: &[u8]) {
         // A transmit error loses the frame; the host's request times out and says so.
-        let _ = embedded_io_06::Write::write_all(&mut self.tx, bytes);
-        let _ = embedded_io_06::Write::flush(&mut self.tx);
+        let _ = embedded_io::Write::write_all(&mut self.serial, bytes);
     }
 }

@@ -31,11 +31,9 @@ pub use stack::peak as peak_stack;
 
 #[cfg(feature = "live-cue")]
 mod live;
-#[cfg(not(feature = "live-cue"))]
 mod serial;
 #[cfg(feature = "live-cue")]
 pub use live::{init, Board, Imu, Link};
-#[cfg(not(feature = "live-cue"))]
 pub use serial::Serial;
 
 /// The board, as reported by `version`.

@@ -1,5 +1,6 @@
-//! UARTE0 as the blocking `embedded_io` port of the firmware without the live cue
-//! (`blocking.rs` serves the link from `main`).
+//! UARTE0 as a blocking `embedded_io` port: the link of the firmware without the live
+//! cue (`blocking.rs` serves it from `main`), and the transmit side of the live cue's
+//! link ([`super::live::Link`]).
 
 use nrf52840_hal::pac;
 use nrf52840_hal::uarte::{self, Uarte};
