@@ -3,7 +3,8 @@
 //!
 //! | task | runs on | priority | does |
 //! |---|---|---|---|
-//! | `sample` | GPIOTE, the LSM6DSOX's INT1 data-ready (a pulse per sample) | 3 | reads the sample with the driver over SPIM3, steps the streaming estimator; hands a stroke or a fault to `report` |
+//! | `sample` | GPIOTE, the LSM6DSOX's INT1 data-ready (a pulse per sample) | 3 | restarts the stall watchdog, reads the sample with the driver over SPIM3, steps the streaming estimator; hands a stroke or a fault to `report` |
+//! | `stalled` | TIMER1, the stall watchdog: no data-ready for 10 ms | 3 | hands `report` a `stalled` fault, once per stall |
 //! | `report` | SWI0_EGU0, pended by `sample` | 2 | plays the planned shot at the stroke's speed, sends the live report frame unprompted, logs it (`live::report`) |
 //! | `idle` | thread mode | 0 | serves the link on UARTE0: frames in, answers out (`serve.rs`) |
 //!
@@ -18,8 +19,7 @@
 //!
 //! Not measured here (no hardware): the per-sample cost, the latency, and whether the
 //! pins are right on a given board. What the build proves: the image links within the
-//! flash and RAM budgets (`cargo xtask test`, step "firmware: nrf52840 board"). A
-//! stalled part (no data-ready) is not detected: no interrupt comes.
+//! flash and RAM budgets (`cargo xtask test`, step "firmware: nrf52840 board").
 
 /// The firmware name and version, as `version` reports them.
 pub const FIRMWARE: &str = concat!(env!("CARGO_PKG_NAME"), " ", env!("CARGO_PKG_VERSION"));
@@ -29,7 +29,7 @@ pub const FIRMWARE: &str = concat!(env!("CARGO_PKG_NAME"), " ", env!("CARGO_PKG_
 mod app {
     use cortex_m::peripheral::DWT;
     use cuesight_device::{live_frame, Identity, Session, Upload};
-    use cuesight_firmware::board::{self, Imu, Link};
+    use cuesight_firmware::board::{self, Imu, Link, STALL_US};
     use cuesight_firmware::live::report::Reporter;
     use cuesight_firmware::live::sampler::{Sampler, StartError};
     use cuesight_firmware::live::Detected;
@@ -40,7 +40,8 @@ mod app {
     use cuesight_sensors::lsm6dsox::Error as ImuError;
     use heapless::spsc::{Consumer, Producer, Queue};
     use nrf52840_hal::gpiote::Gpiote;
-    use nrf52840_hal::pac::Interrupt;
+    use nrf52840_hal::pac::{Interrupt, TIMER1};
+    use nrf52840_hal::timer::{OneShot, Timer};
     use static_cell::ConstStaticCell;
 
     use super::FIRMWARE;
@@ -57,13 +58,25 @@ mod app {
     struct Shared {
         link: Link,
         session: Session<&'static mut Upload>,
+        /// The sampling state, shared by `sample` and `stalled` (one priority: no lock).
+        #[lock_free]
+        sampling: Sampling,
+    }
+
+    /// What the two sampling tasks share.
+    pub struct Sampling {
+        sampler: Option<Sampler<Imu>>,
+        detected_tx: Producer<'static, Detected, DETECTED>,
+        watchdog: Timer<TIMER1, OneShot>,
+        /// The last read failed (one report per run of failures).
+        failing: bool,
+        /// The watchdog fired and no data-ready came since (one report per stall).
+        stalled: bool,
     }
 
     #[local]
     struct Local {
         gpiote: Gpiote,
-        sampler: Option<Sampler<Imu>>,
-        detected_tx: Producer<'static, Detected, DETECTED>,
         detected_rx: Consumer<'static, Detected, DETECTED>,
         frames: &'static mut FrameReader,
         answer: &'static mut [u8; MAX_FRAME],
@@ -92,8 +105,12 @@ mod app {
         };
         let (mut detected_tx, detected_rx) = cx.local.detected.split();
         let mut sampler = None;
+        let mut watchdog = board.watchdog;
         match Sampler::start_part(&mut sampler, board.imu) {
-            Ok(()) => defmt::info!("LSM6DSOX up: sampling on INT1"),
+            Ok(()) => {
+                defmt::info!("LSM6DSOX up: sampling on INT1");
+                watchdog.start(STALL_US);
+            }
             Err(error) => {
                 match error {
                     StartError::Imu(ImuError::WrongChipId(id)) => {
@@ -116,11 +133,16 @@ mod app {
             Shared {
                 link: board.link,
                 session: Session::with_upload(identity, upload),
+                sampling: Sampling {
+                    sampler,
+                    detected_tx,
+                    watchdog,
+                    failing: false,
+                    stalled: false,
+                },
             },
             Local {
                 gpiote: board.gpiote,
-                sampler,
-                detected_tx,
                 detected_rx,
                 frames,
                 answer,
@@ -154,20 +176,22 @@ mod app {
     }
 
     /// The data-ready: one sample through the driver and the estimator.
-    #[task(binds = GPIOTE, priority = 3, local = [gpiote, sampler, detected_tx, failing: bool = false])]
+    #[task(binds = GPIOTE, priority = 3, shared = [sampling], local = [gpiote])]
     fn sample(cx: sample::Context) {
-        let sample::LocalResources {
-            gpiote,
+        let at = DWT::cycle_count();
+        cx.local.gpiote.channel0().reset_events();
+        let Sampling {
             sampler,
             detected_tx,
+            watchdog,
             failing,
-            ..
-        } = cx.local;
-        let at = DWT::cycle_count();
-        gpiote.channel0().reset_events();
+            stalled,
+        } = cx.shared.sampling;
         let Some(live) = sampler.as_mut() else {
             return;
         };
+        watchdog.start(STALL_US);
+        *stalled = false;
         let event = match live.read() {
             Ok(words) => {
                 *failing = false;
@@ -187,6 +211,30 @@ mod app {
         };
         if let Some(event) = event {
             hand_over(detected_tx, Detected::event(live, event, at));
+        }
+    }
+
+    /// The stall watchdog fired: no data-ready for [`STALL_US`]. Reported once; the
+    /// next data-ready restarts the watchdog (the part's pulses need no re-arming).
+    #[task(binds = TIMER1, priority = 3, shared = [sampling])]
+    fn stalled(cx: stalled::Context) {
+        let Sampling {
+            sampler,
+            detected_tx,
+            watchdog,
+            stalled,
+            ..
+        } = cx.shared.sampling;
+        watchdog.reset_event();
+        let Some(live) = sampler.as_ref() else {
+            return;
+        };
+        if !core::mem::replace(stalled, true) {
+            let sample = live.samples();
+            hand_over(
+                detected_tx,
+                Detected::Sensor(SensorFault::Stalled { sample }),
+            );
         }
     }
 

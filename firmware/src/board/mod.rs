@@ -36,7 +36,7 @@ mod nrf52840;
 #[cfg(feature = "nrf52840-board")]
 pub use nrf52840::{exit, init, peak_stack, uptime_us, Board, CORE_MHZ, NAME};
 #[cfg(feature = "nrf52840-live")]
-pub use nrf52840::{Imu, Link};
+pub use nrf52840::{Imu, Link, STALL_US};
 
 #[cfg(not(any(feature = "qemu", feature = "nrf52840-board")))]
 compile_error!("select a board with a cargo feature: `qemu` (the default) or `nrf52840`");

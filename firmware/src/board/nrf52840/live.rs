@@ -28,6 +28,7 @@ use nrf52840_hal::gpiote::Gpiote;
 use nrf52840_hal::pac;
 
 use nrf52840_hal::spim::{self, Frequency, Spim, MODE_3};
+use nrf52840_hal::timer::{OneShot, Timer};
 use static_cell::ConstStaticCell;
 
 use super::{common, exit, start_cycle_counter, Serial};
@@ -84,11 +85,20 @@ pub struct Board {
     pub imu: Imu,
     /// GPIOTE, channel 0 raising its interrupt on INT1's rising edge.
     pub gpiote: Gpiote,
+    /// TIMER1 at 1 MHz, one-shot, its compare interrupt enabled: the stall watchdog
+    /// (every sample restarts it; it fires when no data-ready came for
+    /// [`STALL_US`]).
+    pub watchdog: Timer<pac::TIMER1, OneShot>,
 }
 
-/// Takes the peripherals, starts the HFXO and the cycle counter, sets up UARTE0, SPIM3
-/// and GPIOTE channel 0 (its interrupt enabled in GPIOTE, not yet in the NVIC: RTIC
-/// unmasks it after `init`); a second call exits with failure.
+/// How long without a data-ready before the part counts as stalled (µs): 10 ms, 66
+/// sample periods at 6.66 kHz.
+pub const STALL_US: u32 = 10_000;
+
+/// Takes the peripherals, starts the HFXO and the cycle counter, sets up UARTE0, SPIM3,
+/// GPIOTE channel 0 and TIMER1 (their interrupts enabled in the peripherals, not yet in
+/// the NVIC: RTIC unmasks them after `init`; the watchdog not started); a second call
+/// exits with failure.
 pub fn init(core: &mut cortex_m::Peripherals) -> Board {
     let (p, uarte) = common();
     start_cycle_counter(&mut core.DCB, &mut core.DWT);
@@ -111,7 +121,10 @@ pub fn init(core: &mut cortex_m::Peripherals) -> Board {
         .input_pin(&int1)
         .lo_to_hi()
         .enable_interrupt();
+    let mut watchdog = Timer::one_shot(p.timer1);
+    watchdog.enable_interrupt();
     Board {
+        watchdog,
         link: Link {
             serial: Serial::new(uarte),
             rx,

@@ -33,7 +33,7 @@ pub use stack::peak as peak_stack;
 mod live;
 mod serial;
 #[cfg(feature = "live-cue")]
-pub use live::{init, Board, Imu, Link};
+pub use live::{init, Board, Imu, Link, STALL_US};
 pub use serial::Serial;
 
 /// The board, as reported by `version`.
@@ -102,6 +102,7 @@ fn common() -> (Peripherals, Uarte<pac::UARTE0>) {
             p1: p.P1,
             spim3: p.SPIM3,
             gpiote: p.GPIOTE,
+            timer1: p.TIMER1,
         },
         uarte,
     )
@@ -113,6 +114,7 @@ struct Peripherals {
     p1: pac::P1,
     spim3: pac::SPIM3,
     gpiote: pac::GPIOTE,
+    timer1: pac::TIMER1,
 }
 
 /// Ends the program: a breakpoint for the debugger (`probe-rs run` stops there; the
