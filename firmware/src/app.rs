@@ -28,20 +28,17 @@ pub const FIRMWARE: &str = concat!(env!("CARGO_PKG_NAME"), " ", env!("CARGO_PKG_
 #[allow(unsafe_code)]
 #[rtic::app(device = cuesight_firmware::board::pac, peripherals = false)]
 mod app {
-    use cuesight_device::{live_frame, Identity, Session, Upload};
     use cuesight_firmware::board::trace_file::TraceFile;
     use cuesight_firmware::board::{self, pac::Interrupt, timers, uart::Uart};
     use cuesight_firmware::live::feed::{Fed, Feed, SAMPLE_LEN};
     use cuesight_firmware::live::report::Reporter;
     use cuesight_firmware::live::sampler::Sampler;
+    use cuesight_firmware::live::tasks::{self, LiveSession, DETECTED};
     use cuesight_firmware::live::Detected;
-    use cuesight_firmware::{serve, shots};
     use cuesight_link::frame::{FrameReader, MAX_FRAME};
     use cuesight_link::live::{SensorFault, TraceEnd};
-    use cuesight_link::SCHEMA_HASH;
     use cuesight_sensors::emulated::EmulatedLsm6dsox;
     use heapless::spsc::{Consumer, Producer, Queue};
-    use static_cell::ConstStaticCell;
 
     use super::FIRMWARE;
 
@@ -53,8 +50,6 @@ mod app {
     const RESUME_AT: usize = 32;
     /// Bytes `feed` reads at most at once: 64 samples.
     const CHUNK: usize = 64 * SAMPLE_LEN;
-    /// Reports waiting for `report` (a power of two, one slot unused: 3).
-    const DETECTED: usize = 4;
 
     /// What `feed` hands to `sample`, in trace order.
     #[derive(Clone, Copy)]
@@ -79,15 +74,10 @@ mod app {
         pub max_ticks: u32,
     }
 
-    static UPLOAD: ConstStaticCell<Upload> = ConstStaticCell::new(Upload::new());
-    static FRAMES: ConstStaticCell<FrameReader> = ConstStaticCell::new(FrameReader::new());
-    static ANSWER: ConstStaticCell<[u8; MAX_FRAME]> = ConstStaticCell::new([0; MAX_FRAME]);
-    static REPORT: ConstStaticCell<[u8; MAX_FRAME]> = ConstStaticCell::new([0; MAX_FRAME]);
-
     #[shared]
     struct Shared {
         link: Uart,
-        session: Session<&'static mut Upload>,
+        session: LiveSession,
     }
 
     #[local]
@@ -112,30 +102,13 @@ mod app {
     ])]
     fn init(cx: init::Context) -> (Shared, Local) {
         let board = board::init();
-        defmt::info!("{=str} on {=str}", FIRMWARE, board::NAME);
-        if shots::run_all() != 0 {
-            board::exit(false);
-        }
-        let identity = Identity {
-            firmware: FIRMWARE,
-            board: board::NAME,
-        };
-        let (Some(upload), Some(frames), Some(answer), Some(report_out)) = (
-            UPLOAD.try_take(),
-            FRAMES.try_take(),
-            ANSWER.try_take(),
-            REPORT.try_take(),
-        ) else {
-            defmt::error!("the session buffers were already taken");
-            board::exit(false)
-        };
+        let (session, buffers) = tasks::boot(FIRMWARE);
         let (producer, consumer) = cx.local.queue.split();
         let (detected_tx, detected_rx) = cx.local.detected.split();
-        defmt::info!("serving link schema {=u32:#010x} on UART0", SCHEMA_HASH);
         (
             Shared {
                 link: board.serial,
-                session: Session::with_upload(identity, upload),
+                session,
             },
             Local {
                 trace: board.trace,
@@ -147,41 +120,25 @@ mod app {
                 detected_rx,
                 sampler: None,
                 cost: Cost::default(),
-                frames,
-                answer,
-                report_out,
+                frames: buffers.frames,
+                answer: buffers.answer,
+                report_out: buffers.report_out,
             },
         )
     }
 
-    /// The link: every frame gets its answer, until `shutdown`.
+    /// The link: every frame gets its answer, until `shutdown`; the host's first request
+    /// starts the emulated IMU.
     #[idle(shared = [link, session], local = [frames, answer])]
     fn idle(cx: idle::Context) -> ! {
-        let idle::SharedResources {
-            link, mut session, ..
-        } = cx.shared;
-        let answer = &mut cx.local.answer[..];
-        let hello = session.lock(|session| session.hello(answer));
-        let mut port = serve::LinkPort::new(link);
-        let mut first = true;
-        let served = serve::serve(&mut port, hello, cx.local.frames, answer, |frame, out| {
-            let served = session.lock(|session| session.serve(frame, out));
-            if core::mem::take(&mut first) {
-                // The host is here: the emulated IMU starts.
-                rtic::pend(Interrupt::UART1RX);
-            }
-            served
-        });
-        let Ok(()) = served;
-        let (requests, errors) = session.lock(|s| (s.requests(), s.errors()));
-        defmt::info!(
-            "shutdown: {=u32} requests answered, {=u32} with an error",
-            requests,
-            errors
-        );
-        let (peak, size) = board::peak_stack();
-        defmt::info!("peak stack {=u32} of {=u32} bytes", peak, size);
-        board::exit(true)
+        let idle::SharedResources { link, session, .. } = cx.shared;
+        tasks::serve_link(
+            link,
+            session,
+            cx.local.frames,
+            &mut cx.local.answer[..],
+            || rtic::pend(Interrupt::UART1RX),
+        )
     }
 
     /// A link byte arrived: acknowledge, so `idle` (woken) reads it.
@@ -347,19 +304,13 @@ mod app {
         }
     }
 
-    /// Queues `detected` for `report` and pends it (a full queue drops it: `report`
-    /// runs at every return from `sample`, so three waiting means it is stuck).
-    ///
-    /// Out of line: `sample` hands over at five places, each a 104-byte copy into the
-    /// queue (none on a sample that reports nothing).
-    #[inline(never)]
+    /// Queues `detected` for `report` and pends it (`live::tasks::hand_over`).
     fn hand_over(detected_tx: &mut Producer<'static, Detected, DETECTED>, detected: Detected) {
-        let _ = detected_tx.enqueue(detected);
-        rtic::pend(Interrupt::DUALTIMER);
+        tasks::hand_over(detected_tx, detected, Interrupt::DUALTIMER);
     }
 
     /// Strokes, faults and trace ends from `sample`: the guidance, the unprompted
-    /// report frame, the log (`live::report`).
+    /// report frame, the log (`live::tasks::report_all`).
     #[task(binds = DUALTIMER, priority = 2, shared = [link, session], local = [detected_rx, report_out, reporter: Reporter = Reporter::new()])]
     fn report(cx: report::Context) {
         let report::LocalResources {
@@ -368,22 +319,9 @@ mod app {
             reporter,
             ..
         } = cx.local;
-        let report::SharedResources {
-            mut link,
-            mut session,
-            ..
-        } = cx.shared;
-        while let Some(detected) = detected_rx.dequeue() {
-            let Some(report) = reporter.report(
-                detected,
-                |speed| session.lock(|s| s.plan_guidance(speed)),
-                |at| timers::ticks().wrapping_sub(at) * timers::INSTRUCTIONS_PER_TICK,
-            ) else {
-                continue;
-            };
-            let len = live_frame(report, &mut report_out[..]);
-            let frame = report_out.get(..len).unwrap_or_default();
-            link.lock(|link| link.write_all(frame));
-        }
+        let report::SharedResources { link, session, .. } = cx.shared;
+        tasks::report_all(detected_rx, reporter, report_out, link, session, |at| {
+            timers::ticks().wrapping_sub(at) * timers::INSTRUCTIONS_PER_TICK
+        });
     }
 }

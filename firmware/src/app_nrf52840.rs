@@ -28,36 +28,25 @@ pub const FIRMWARE: &str = concat!(env!("CARGO_PKG_NAME"), " ", env!("CARGO_PKG_
 #[rtic::app(device = nrf52840_hal::pac, peripherals = false)]
 mod app {
     use cortex_m::peripheral::DWT;
-    use cuesight_device::{live_frame, Identity, Session, Upload};
     use cuesight_firmware::board::{self, Imu, Link, STALL_US};
     use cuesight_firmware::live::report::Reporter;
     use cuesight_firmware::live::sampler::{Sampler, StartError};
+    use cuesight_firmware::live::tasks::{self, LiveSession, DETECTED};
     use cuesight_firmware::live::Detected;
-    use cuesight_firmware::{serve, shots};
     use cuesight_link::frame::{FrameReader, MAX_FRAME};
     use cuesight_link::live::SensorFault;
-    use cuesight_link::SCHEMA_HASH;
     use cuesight_sensors::lsm6dsox::Error as ImuError;
     use heapless::spsc::{Consumer, Producer, Queue};
     use nrf52840_hal::gpiote::Gpiote;
     use nrf52840_hal::pac::{Interrupt, TIMER1};
     use nrf52840_hal::timer::{OneShot, Timer};
-    use static_cell::ConstStaticCell;
 
     use super::FIRMWARE;
-
-    /// Reports waiting for `report` (a power of two, one slot unused: 3).
-    const DETECTED: usize = 4;
-
-    static UPLOAD: ConstStaticCell<Upload> = ConstStaticCell::new(Upload::new());
-    static FRAMES: ConstStaticCell<FrameReader> = ConstStaticCell::new(FrameReader::new());
-    static ANSWER: ConstStaticCell<[u8; MAX_FRAME]> = ConstStaticCell::new([0; MAX_FRAME]);
-    static REPORT: ConstStaticCell<[u8; MAX_FRAME]> = ConstStaticCell::new([0; MAX_FRAME]);
 
     #[shared]
     struct Shared {
         link: Link,
-        session: Session<&'static mut Upload>,
+        session: LiveSession,
         /// The sampling state, shared by `sample` and `stalled` (one priority: no lock).
         #[lock_free]
         sampling: Sampling,
@@ -86,23 +75,7 @@ mod app {
     #[init(local = [detected: Queue<Detected, DETECTED> = Queue::new()])]
     fn init(mut cx: init::Context) -> (Shared, Local) {
         let board = board::init(&mut cx.core);
-        defmt::info!("{=str} on {=str}", FIRMWARE, board::NAME);
-        if shots::run_all() != 0 {
-            board::exit(false);
-        }
-        let identity = Identity {
-            firmware: FIRMWARE,
-            board: board::NAME,
-        };
-        let (Some(upload), Some(frames), Some(answer), Some(report_out)) = (
-            UPLOAD.try_take(),
-            FRAMES.try_take(),
-            ANSWER.try_take(),
-            REPORT.try_take(),
-        ) else {
-            defmt::error!("the session buffers were already taken");
-            board::exit(false)
-        };
+        let (session, buffers) = tasks::boot(FIRMWARE);
         let (mut detected_tx, detected_rx) = cx.local.detected.split();
         let mut sampler = None;
         let mut watchdog = board.watchdog;
@@ -128,11 +101,10 @@ mod app {
                 rtic::pend(Interrupt::SWI0_EGU0);
             }
         }
-        defmt::info!("serving link schema {=u32:#010x} on UARTE0", SCHEMA_HASH);
         (
             Shared {
                 link: board.link,
-                session: Session::with_upload(identity, upload),
+                session,
                 sampling: Sampling {
                     sampler,
                     detected_tx,
@@ -144,9 +116,9 @@ mod app {
             Local {
                 gpiote: board.gpiote,
                 detected_rx,
-                frames,
-                answer,
-                report_out,
+                frames: buffers.frames,
+                answer: buffers.answer,
+                report_out: buffers.report_out,
             },
         )
     }
@@ -154,25 +126,14 @@ mod app {
     /// The link: every frame gets its answer, until `shutdown`.
     #[idle(shared = [link, session], local = [frames, answer])]
     fn idle(cx: idle::Context) -> ! {
-        let idle::SharedResources {
-            link, mut session, ..
-        } = cx.shared;
-        let answer = &mut cx.local.answer[..];
-        let hello = session.lock(|session| session.hello(answer));
-        let mut port = serve::LinkPort::new(link);
-        let served = serve::serve(&mut port, hello, cx.local.frames, answer, |frame, out| {
-            session.lock(|session| session.serve(frame, out))
-        });
-        let Ok(()) = served;
-        let (requests, errors) = session.lock(|s| (s.requests(), s.errors()));
-        defmt::info!(
-            "shutdown: {=u32} requests answered, {=u32} with an error",
-            requests,
-            errors
-        );
-        let (peak, size) = board::peak_stack();
-        defmt::info!("peak stack {=u32} of {=u32} bytes", peak, size);
-        board::exit(true)
+        let idle::SharedResources { link, session, .. } = cx.shared;
+        tasks::serve_link(
+            link,
+            session,
+            cx.local.frames,
+            &mut cx.local.answer[..],
+            || {},
+        )
     }
 
     /// The data-ready: one sample through the driver and the estimator.
@@ -238,15 +199,13 @@ mod app {
         }
     }
 
-    /// Queues `detected` for `report` and pends it (a full queue drops it).
-    #[inline(never)]
+    /// Queues `detected` for `report` and pends it (`live::tasks::hand_over`).
     fn hand_over(detected_tx: &mut Producer<'static, Detected, DETECTED>, detected: Detected) {
-        let _ = detected_tx.enqueue(detected);
-        rtic::pend(Interrupt::SWI0_EGU0);
+        tasks::hand_over(detected_tx, detected, Interrupt::SWI0_EGU0);
     }
 
-    /// Strokes and faults from `sample`: the guidance, the unprompted report frame, the
-    /// log (`live::report`).
+    /// Strokes and faults from `sample` and `stalled`: the guidance, the unprompted
+    /// report frame, the log (`live::tasks::report_all`; latency in DWT cycles).
     #[task(binds = SWI0_EGU0, priority = 2, shared = [link, session], local = [detected_rx, report_out, reporter: Reporter = Reporter::new()])]
     fn report(cx: report::Context) {
         let report::LocalResources {
@@ -255,22 +214,9 @@ mod app {
             reporter,
             ..
         } = cx.local;
-        let report::SharedResources {
-            mut link,
-            mut session,
-            ..
-        } = cx.shared;
-        while let Some(detected) = detected_rx.dequeue() {
-            let Some(report) = reporter.report(
-                detected,
-                |speed| session.lock(|s| s.plan_guidance(speed)),
-                |at| DWT::cycle_count().wrapping_sub(at),
-            ) else {
-                continue;
-            };
-            let len = live_frame(report, &mut report_out[..]);
-            let frame = report_out.get(..len).unwrap_or_default();
-            link.lock(|link| serve::SharedSerial::write_all(link, frame));
-        }
+        let report::SharedResources { link, session, .. } = cx.shared;
+        tasks::report_all(detected_rx, reporter, report_out, link, session, |at| {
+            DWT::cycle_count().wrapping_sub(at)
+        });
     }
 }

@@ -7,6 +7,8 @@ pub mod feed;
 #[cfg(feature = "live-cue")]
 pub mod report;
 pub mod sampler;
+#[cfg(feature = "live-cue")]
+pub mod tasks;
 
 use cuesight_link::live::{SensorFault, StrokeMetrics, TraceEnd};
 use cuesight_sensors::{StreamEvent, StreamStroke};
