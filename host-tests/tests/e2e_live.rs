@@ -14,6 +14,7 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use cuesight_device::{Identity, Session};
+use cuesight_host::compare::thousands;
 use cuesight_host::firmware::find_defmt_print;
 use cuesight_host::live::{csv_samples, play, trace_binary};
 use cuesight_link::live::{FollowThrough, LiveReport, LiveStroke};
@@ -244,7 +245,21 @@ fn the_live_cue_reports_every_stroke_of_the_shipped_traces_with_the_hosts_guidan
             end.work_mean_instructions(),
             end.work_max_instructions
         );
+        // README's "The live cue": each trace's row.
+        let key = |what: &str| format!("live-{name}-{what}");
+        cuesight_figures::record!(&key("strokes"), "{}", reported.len());
+        cuesight_figures::record!(&key("faults"), "{}", faults.len());
+        cuesight_figures::record!(&key("samples"), "{}", thousands(end.samples as usize));
+        cuesight_figures::record!(&key("work-mean"), "{:.0}", end.work_mean_instructions());
+        cuesight_figures::record!(&key("work-max"), "{}", end.work_max_instructions);
     }
+    cuesight_figures::record!("live-strokes", "{strokes}");
+    cuesight_figures::record!("live-impact-within", "{worst_impact}");
+    cuesight_figures::record!("live-speed-within", "{:.3}", worst_speed * 100.0);
+    cuesight_figures::record!("live-latency-max", "{}", thousands(worst_latency as usize));
+    cuesight_figures::record!("live-follow-throughs", "{follows}");
+    cuesight_figures::record!("live-follow-length", "{:.2}", worst_follow_m * 1e3);
+    cuesight_figures::record!("live-follow-time", "{:.1}", worst_follow_s * 1e3);
     println!(
         "{strokes} strokes: impact within {worst_impact} samples, cue speed within {:.3} %, guidance equal to the host's, latency at most {worst_latency} instructions; {follows} follow-throughs within {:.2} mm and {:.1} ms",
         worst_speed * 100.0,
