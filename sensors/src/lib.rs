@@ -1,7 +1,7 @@
 //! IMU driver, sample ring buffer and stroke estimator for the cuesight smart cue.
 //!
-//! * [`lsm6dsox`]: embedded-hal 1.0 I²C driver for the ST LSM6DSOX, configured for
-//!   6.66 kHz, ±16 g, ±2000 dps, with its register map documented.
+//! * [`lsm6dsox`]: embedded-hal 1.0 driver for the ST LSM6DSOX on I²C or SPI,
+//!   configured for 6.66 kHz, ±16 g, ±2000 dps, with its register map documented.
 //! * [`ring`]: [`RingBuffer`], a fixed-capacity, heap-free ring holding the latest
 //!   samples.
 //! * [`stroke`]: [`estimate`] / [`estimate_raw`] turn the cue-axis samples of a stroke —
