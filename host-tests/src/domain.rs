@@ -245,6 +245,9 @@ pub struct Scored {
     /// The reference's object-ball speed over U (the throw angle is ill-conditioned where
     /// it is small: at |φ| → 90° the object ball barely moves).
     pub object_speed: f64,
+    /// The tier `Auto` at [`AUTO_TOLERANCE`] picks, and its a-priori estimate of that
+    /// tier's error (`cuesight::select_model`).
+    pub auto_pick: (Model, f32),
 }
 
 impl Scored {
@@ -264,6 +267,7 @@ pub fn score(scene: &DomainScene) -> Scored {
         errors: results.map(|result| result.ok().map(|out| scene_error(&scene.scene, &out, &r))),
         returned: results.map(Result::err),
         object_speed: r.object_ball.velocity.length() / scene.scene.speed(),
+        auto_pick: cuesight::select_model(&params, &impact, AUTO_TOLERANCE as f32),
     }
 }
 
@@ -323,6 +327,14 @@ pub struct Cell {
     pub worst_throw_moving: [f64; 6],
     /// Scenes where `Auto(1e-3)` is within its own tolerance, 1e-3 of U.
     pub auto_within_tolerance: usize,
+    /// Scenes where `Auto(1e-3)`'s a-priori estimate is at or above its true error.
+    pub auto_estimate_bounds: usize,
+    /// The smallest ratio of `Auto(1e-3)`'s estimate to its true error (scenes with a
+    /// non-zero error; `None` if none).
+    pub auto_estimate_min_ratio: Option<f64>,
+    /// Scenes where `Auto(1e-3)` picks `Ideal` although the friction law is not zero
+    /// (μ(0) > 0) and the reference's object ball moves.
+    pub auto_ideal_with_friction: usize,
 }
 
 /// The larger of `a` and `b`, NaN if either is (a NaN error must show, not vanish).
@@ -357,8 +369,25 @@ impl Cell {
                     }
                     self.worst[m] = nan_max(self.worst[m], c);
                     self.worst_throw[m] = nan_max(self.worst_throw[m], e.throw_deg);
-                    if m == AUTO && c <= AUTO_TOLERANCE {
-                        self.auto_within_tolerance += 1;
+                    if m == AUTO {
+                        if c <= AUTO_TOLERANCE {
+                            self.auto_within_tolerance += 1;
+                        }
+                        let estimate = f64::from(s.auto_pick.1);
+                        if estimate >= c {
+                            self.auto_estimate_bounds += 1;
+                        }
+                        if c > 0.0 {
+                            let ratio = estimate / c;
+                            self.auto_estimate_min_ratio =
+                                Some(self.auto_estimate_min_ratio.map_or(ratio, |r| r.min(ratio)));
+                        }
+                        if s.auto_pick.0 == Model::Ideal
+                            && s.scene.mu() > 0.0
+                            && s.object_speed > 0.0
+                        {
+                            self.auto_ideal_with_friction += 1;
+                        }
                     }
                     if s.object_speed >= MIN_OBJECT_SPEED {
                         self.worst_throw_moving[m] =
@@ -575,6 +604,26 @@ impl Map {
         out.push((
             "auto-worst-tolerances".to_string(),
             format!("{:.1}", all.worst[AUTO] / AUTO_TOLERANCE),
+        ));
+        out.push((
+            "auto-estimate-bounds".to_string(),
+            format!(
+                "{:.2}",
+                100.0 * all.auto_estimate_bounds as f64 / all.count.max(1) as f64
+            ),
+        ));
+        out.push((
+            "auto-estimate-bounds-scenes".to_string(),
+            all.auto_estimate_bounds.to_string(),
+        ));
+        out.push((
+            "auto-estimate-min-ratio".to_string(),
+            all.auto_estimate_min_ratio
+                .map_or("none".to_string(), |r| format!("{r:.3}")),
+        ));
+        out.push((
+            "auto-ideal-with-friction".to_string(),
+            all.auto_ideal_with_friction.to_string(),
         ));
         out.push(("scenes".to_string(), all.count.to_string()));
         out

@@ -155,3 +155,29 @@ fn auto_never_picks_ideal_where_friction_throws_a_thin_cut() {
         }
     }
 }
+
+/// Issue 16, item 5: no `Ideal` wherever a friction law acts on a moving object ball,
+/// however weak: μ = 7e-5 at an 89.84° cut (the domain map's seed-16 scenes 2201 and
+/// 96580 were picked `Ideal` by the rule that compared the friction with `T` p₀), and
+/// an estimate is never 0 where the answer has rounding error (`KimGrip` at μ = 0 on
+/// the domain map: estimate 0 for an error of 1e-8 of U).
+#[test]
+fn auto_keeps_ideal_to_scenes_where_nothing_it_leaves_out_acts() {
+    use cuesight::{error_estimate, Impact, Params};
+    let impact = Impact::from_cut_degrees(2.0, 89.84, [0.0, 50.0, 0.0]).unwrap();
+    let elastic = Params::POOL.with_restitution(1.0).unwrap();
+    for tolerance in [1e-2f32, 1e-3] {
+        let weak = elastic.with_mu(7e-5).unwrap();
+        let (tier, _) = select_model(&weak, &impact, tolerance);
+        assert_ne!(tier, Model::Ideal, "μ = 7e-5, tolerance {tolerance}");
+        // Frictionless and elastic: `Ideal` is exact, and picked.
+        let none = elastic.with_mu(0.0).unwrap().with_mu_s(0.0).unwrap();
+        let (tier, _) = select_model(&none, &impact, tolerance);
+        assert_eq!(tier, Model::Ideal, "frictionless, tolerance {tolerance}");
+    }
+    let frictionless = Params::POOL.with_mu(0.0).unwrap();
+    for model in [Model::Ideal, Model::KimGrip, Model::Exact] {
+        let estimate = error_estimate(&frictionless, &impact, model);
+        assert!(estimate > 0.0, "{model:?}: {estimate}");
+    }
+}

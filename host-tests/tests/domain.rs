@@ -11,6 +11,9 @@
 //! * every model answers every scene with finite errors;
 //! * `Exact` and `Auto(1e-3)` are within 5 % of U in every scene and within 0.5 % of U
 //!   in at least 99.9 % of them;
+//! * `Auto(1e-3)`'s estimate is at or above its true error in at least 99.5 % of the
+//!   scenes and never below a third of it, and it never picks `Ideal` where a friction
+//!   law acts on a moving object ball (issue 16, item 5);
 //! * `KimGrip` is within 5 % of U in at least 99.5 % of the scenes of every μ·μ_s band
 //!   up to 0.2 (measured 99.9–100 %), and within 0.5 % in at least 98 % of those with
 //!   μ·μ_s ≤ 0.02 (measured 98.6 %); without cue-ball/table friction (μ_ct = 0), within
@@ -55,6 +58,22 @@ fn domain_map() {
     }
 
     // Coverage: every bin populated (expected ≈ 1,000 per (μ, μ_s) cell).
+    // Issue 16, item 5: `Auto(1e-3)`'s estimate at or above its true error in ≥ 99.5 %
+    // of the scenes and never below a third of it (measured 99.99 % and 0.51; the
+    // estimate's rounding term and `Exact`'s factors were chosen on seed 17's scenes),
+    // and no `Ideal` where a friction law acts on a moving object ball.
+    let all = &map.all;
+    assert!(
+        all.auto_estimate_bounds as f64 >= 0.995 * SCENES as f64,
+        "Auto's estimate bounds its error in {} of {SCENES} scenes",
+        all.auto_estimate_bounds
+    );
+    let ratio = all.auto_estimate_min_ratio.unwrap_or(f64::INFINITY);
+    assert!(
+        ratio >= 1.0 / 3.0,
+        "Auto's estimate at {ratio} of its error"
+    );
+    assert_eq!(all.auto_ideal_with_friction, 0);
     assert_eq!(map.all.count, SCENES);
     for (i, column) in map.grid.iter().enumerate() {
         for (j, cell) in column.iter().enumerate() {
