@@ -42,7 +42,7 @@
 //! seed 16's (`host-tests/tests/domain.rs`; docs/accuracy-domain.md).
 //!
 //! `Auto`'s ladder ([`select`]) is the Pareto front of `docs/tradeoff.md`: `Ideal` where
-//! neither friction nor a restitution loss acts, else `KimGrip`, else `Exact`.
+//! neither a friction impulse nor a restitution loss acts, else `KimGrip`, else `Exact`.
 
 use crate::impact::Impact;
 use crate::kim_grip::initial_slip;
@@ -85,9 +85,10 @@ pub fn error_estimate(params: &Params, impact: &Impact, model: Model) -> f32 {
 /// accurate, so `Auto` never picks them; they stay callable as the seed's
 /// reproductions.
 ///
-/// `Ideal` is picked only where nothing it leaves out acts: no friction (μ(0) = 0 and
-/// μ_ct = 0) and no restitution loss (e* = 1). Never where a friction law acts on a
-/// moving object ball (issue 16, item 5): at a thin cut the whole impact is a small
+/// `Ideal` is picked only where nothing it leaves out acts: no friction impulse (`J = 0`:
+/// μ(0) = 0, or no slip at the contact, where no friction acts either) and no
+/// restitution loss (e* = 1). Never where a friction law acts on a moving object ball
+/// (issue 16, item 5): at a thin cut the whole impact is a small
 /// share of `U`, so an estimate against `U` let `Ideal` through where its throw is
 /// wholly wrong (`--cut 89.9 --roll --mu 0.06`: 0° where the reference throws the
 /// object ball 3.4°), and a friction too weak to matter against `T` (μ = 7e-5 at an
@@ -98,9 +99,10 @@ pub fn error_estimate(params: &Params, impact: &Impact, model: Model) -> f32 {
 #[inline(never)]
 pub fn select(params: &Params, impact: &Impact, tolerance: f32) -> (Model, f32) {
     let f = Features::of(params, impact);
-    let ideal = f.ideal();
-    if f.frictionless && f.restitution_loss == 0.0 && ideal <= tolerance {
-        return (Model::Ideal, ideal);
+    // No friction impulse and elastic: `Ideal` leaves out nothing, its estimate is the
+    // rounding (`ideal()` with `J = 0` and no restitution loss).
+    if f.impulse == 0.0 && f.restitution_loss == 0.0 && f.rounding <= tolerance {
+        return (Model::Ideal, f.rounding);
     }
     let kim_grip = f.kim_grip();
     if kim_grip <= tolerance {
@@ -125,8 +127,6 @@ struct Features {
     table: f32,
     /// The answer's f32 rounding in units of U (module docs).
     rounding: f32,
-    /// No friction law acts: μ(0) = 0 and μ_ct = 0.
-    frictionless: bool,
     /// Lean of the pressed object ball's table-contact slip towards `y` while it slides,
     /// `|J_y| / (p + |J_z|/ν)` with `J ≈ μ p`: `μ ŷ / (1 + μ ẑ/ν)` (`ŷ`, `ẑ` the slip
     /// direction's shares): the direction eq. (7) neglects.
@@ -158,7 +158,10 @@ impl Features {
             (0.0, 0.0)
         };
         let kim_budget = law.at(slip) * p0;
-        let impulse = crate::math::max(0.0, (law.at(0.0) * p0).min(stick_budget));
+        // μ(0), the law's largest value, `a + b` without the `exp` of `at(0)` (the same
+        // value: exp(0) is 1).
+        let mu0 = law.largest();
+        let impulse = crate::math::max(0.0, (mu0 * p0).min(stick_budget));
         let fraction = if kim_budget >= stick_budget {
             1.0
         } else {
@@ -169,16 +172,13 @@ impl Features {
         } else {
             0.0
         };
-        let calibrated = law.at(0.0) <= 0.12
-            && params.mu_s() <= 0.4
-            && e >= 0.9
-            && params.cue_table_friction() <= 1e-3;
+        let calibrated =
+            mu0 <= 0.12 && params.mu_s() <= 0.4 && e >= 0.9 && params.cue_table_friction() <= 1e-3;
         // `R|ω|/U`: infinite rather than NaN where the speed underflows (U ≥ U_x > 0).
         let spin_scale = params.radius() * impact.spin().length() / speed;
         Self {
             calibrated,
             rounding: ROUNDING_ULPS * crate::math::max(1.0, spin_scale),
-            frictionless: law.at(0.0) == 0.0 && params.cue_table_friction() == 0.0,
             table_factor: 1.0 + params.mu_s() + params.cue_table_friction(),
             speed,
             restitution_loss: 0.5 * (1.0 - e) * u.x,
@@ -188,8 +188,7 @@ impl Features {
             fraction,
             anisotropy: (7.0 - k_z) / 7.0,
             table_lean: if slip > 0.0 {
-                let mu = law.at(0.0);
-                (crate::math::abs(v_y) / slip) * mu / (1.0 + 2.5 * vertical_share * mu)
+                (crate::math::abs(v_y) / slip) * mu0 / (1.0 + 2.5 * vertical_share * mu0)
             } else {
                 0.0
             },

@@ -80,11 +80,6 @@ impl Reporter {
                 if impact != self.last_impact {
                     return None;
                 }
-                defmt::info!(
-                    "stroke {=u32}: follow-through {=f32} m",
-                    self.strokes,
-                    length
-                );
                 LiveReport::FollowThrough(FollowThrough {
                     stroke: self.strokes,
                     length,
@@ -94,18 +89,9 @@ impl Reporter {
             Detected::Event {
                 event: StreamEvent::Fault(fault),
                 ..
-            } => {
-                defmt::info!("an impact that is no stroke (the live report says why)");
-                LiveReport::Fault(fault)
-            }
-            Detected::Sensor(fault) => {
-                defmt::warn!("IMU fault (the live report says which)");
-                LiveReport::Sensor(fault)
-            }
-            Detected::End(end) => {
-                defmt::info!("IMU trace ended");
-                LiveReport::TraceEnd(end)
-            }
+            } => LiveReport::Fault(fault),
+            Detected::Sensor(fault) => LiveReport::Sensor(fault),
+            Detected::End(end) => LiveReport::TraceEnd(end),
         })
     }
 }

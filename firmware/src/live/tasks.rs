@@ -5,7 +5,6 @@
 
 use cuesight_device::{live_frame, Identity, Session, Upload};
 use cuesight_link::frame::{FrameReader, MAX_FRAME};
-use cuesight_link::SCHEMA_HASH;
 use heapless::spsc::{Consumer, Producer};
 use static_cell::ConstStaticCell;
 
@@ -57,7 +56,6 @@ pub fn boot(firmware: &'static str) -> (LiveSession, Buffers) {
         defmt::error!("the session buffers were already taken");
         board::exit(false)
     };
-    defmt::info!("serving link schema {=u32:#010x}", SCHEMA_HASH);
     (
         Session::with_upload(identity, upload),
         Buffers {
