@@ -590,31 +590,17 @@ impl Map {
             ));
         }
         let all = &self.all;
-        out.push((
-            "auto-within-tolerance".to_string(),
-            format!(
-                "{:.2}",
-                100.0 * all.auto_within_tolerance as f64 / all.count.max(1) as f64
-            ),
-        ));
-        out.push((
-            "auto-within-tolerance-scenes".to_string(),
-            all.auto_within_tolerance.to_string(),
-        ));
+        // A count of scenes as a share (%, two decimals) and as the count.
+        let mut share = |key: &str, n: usize| {
+            let percent = 100.0 * n as f64 / all.count.max(1) as f64;
+            out.push((key.to_string(), format!("{percent:.2}")));
+            out.push((format!("{key}-scenes"), n.to_string()));
+        };
+        share("auto-within-tolerance", all.auto_within_tolerance);
+        share("auto-estimate-bounds", all.auto_estimate_bounds);
         out.push((
             "auto-worst-tolerances".to_string(),
             format!("{:.1}", all.worst[AUTO] / AUTO_TOLERANCE),
-        ));
-        out.push((
-            "auto-estimate-bounds".to_string(),
-            format!(
-                "{:.2}",
-                100.0 * all.auto_estimate_bounds as f64 / all.count.max(1) as f64
-            ),
-        ));
-        out.push((
-            "auto-estimate-bounds-scenes".to_string(),
-            all.auto_estimate_bounds.to_string(),
         ));
         out.push((
             "auto-estimate-min-ratio".to_string(),
