@@ -239,12 +239,14 @@ fn within_layout_slack(spec: &str, was: &str, now: &str) -> bool {
     if counted {
         return was.abs_diff(now) as f64 <= COUNT_RESOLUTION * was.max(now) as f64;
     }
-    // The live cue's per-sample work and latency (README, "The live cue"): the same
-    // commit measured 205 / 920 / 40,480 in /work/main and 200 / 880 / 40,440 in a fresh
-    // clone (three-strokes-6667's mean and max, the latency): the machine outliner's
-    // choices follow fat LTO's function order, which follows the checkout's path, and
-    // the counts move by a few instructions a sample, the maxima by one 40-instruction
-    // tick of the timer that measures them.
+    // The live cue's per-sample work and latency (README, "The live cue") move between
+    // runs of one commit: 205 / 920 / 40,480 and 200 / 880 / 40,440 (three-strokes-6667's
+    // mean and max, the latency) in /work/main and a fresh clone, and 200 and 205 for
+    // that mean in two runs in /work/main. Cause not traced (candidates: the host link's
+    // timing against QEMU's virtual clock, which jumps while QEMU waits for the host;
+    // the function order fat LTO takes from the checkout's path). The means move by a
+    // few instructions a sample, the maxima and the latency by one 40-instruction tick
+    // of the timer that measures them.
     let spec = spec.trim();
     if spec.starts_with("figure live-") {
         if spec.ends_with("-work-mean") {
