@@ -17,7 +17,7 @@ fn main() {
     // it provides `DefaultHandler` for each named line a build leaves without a handler
     // (as an svd2rust crate's does). (The nrf52840 board's comes with nrf52840-pac.)
     if env::var_os("CARGO_FEATURE_QEMU").is_some() {
-        let lines = ["UART0RX", "UART1RX", "TIMER1", "DUALTIMER"];
+        let lines = ["UART0RX", "UART1RX", "UART2RX", "TIMER1", "DUALTIMER"];
         let provide: String = lines
             .iter()
             .map(|line| format!("PROVIDE({line} = DefaultHandler);\n"))

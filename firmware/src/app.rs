@@ -3,7 +3,8 @@
 //!
 //! | task | runs on | priority | does |
 //! |---|---|---|---|
-//! | `sample` | TIMER1, the IMU's data-ready at the output data rate | 3 | latches the next trace sample into the emulated LSM6DSOX, reads it with the driver, steps the streaming estimator; hands a stroke, fault or the trace's end to `report` |
+//! | `sample` | TIMER1, the IMU's data-ready at the output data rate | 4 | latches the next trace sample into the emulated LSM6DSOX, reads it with the driver, steps the streaming estimator; pends `resolve` when the sample found something; hands the trace's end to `report` |
+//! | `resolve` | UART2's receive line (UART2 unused), pended by `sample` | 3 | computes the report the estimator deferred (a stroke, its follow-through) or takes a fault of the part, and hands it to `report`: the sampling interrupt stays short, and this runs before the next sample |
 //! | `report` | the dual timer's line, pended by `sample` | 2 | plays the planned shot at the stroke's speed, sends the live report frame unprompted, logs it |
 //! | `feed` | UART1's receive line (UART1 unused), pended by `sample` | 1 | reads the next chunk of the IMU trace (`board::trace_file`), decodes it (`live::feed`) into a 127-item queue; starts the data-ready clock |
 //! | `link_rx` | UART0 receive | 1 | acknowledges the byte, waking `idle` |
@@ -70,14 +71,27 @@ mod app {
     #[derive(Clone, Copy, Default)]
     pub struct Cost {
         pub samples: u32,
+        /// Every sample's and every resolution's.
         pub ticks: u64,
+        /// The most of one sample's interrupt...
         pub max_ticks: u32,
+        /// ...and of one resolution (`resolve`).
+        pub max_resolve_ticks: u32,
+    }
+
+    /// What `sample` and `resolve` share (`resolve` locks it: it is the only task that
+    /// may wait on `sample`).
+    pub struct Sampling {
+        sampler: Option<Sampler<EmulatedLsm6dsox>>,
+        detected_tx: Producer<'static, Detected, DETECTED>,
+        cost: Cost,
     }
 
     #[shared]
     struct Shared {
         link: Uart,
         session: LiveSession,
+        sampling: Sampling,
     }
 
     #[local]
@@ -87,10 +101,7 @@ mod app {
         rate_hz: u16,
         producer: Producer<'static, Item, QUEUE>,
         consumer: Consumer<'static, Item, QUEUE>,
-        detected_tx: Producer<'static, Detected, DETECTED>,
         detected_rx: Consumer<'static, Detected, DETECTED>,
-        sampler: Option<Sampler<EmulatedLsm6dsox>>,
-        cost: Cost,
         frames: &'static mut FrameReader,
         answer: &'static mut [u8; MAX_FRAME],
         report_out: &'static mut [u8; MAX_FRAME],
@@ -109,6 +120,11 @@ mod app {
             Shared {
                 link: board.serial,
                 session,
+                sampling: Sampling {
+                    sampler: None,
+                    detected_tx,
+                    cost: Cost::default(),
+                },
             },
             Local {
                 trace: board.trace,
@@ -116,10 +132,7 @@ mod app {
                 rate_hz: 0,
                 producer,
                 consumer,
-                detected_tx,
                 detected_rx,
-                sampler: None,
-                cost: Cost::default(),
                 frames: buffers.frames,
                 answer: buffers.answer,
                 report_out: buffers.report_out,
@@ -206,35 +219,48 @@ mod app {
     }
 
     /// The data-ready: one sample through the part, the driver and the estimator.
-    #[task(binds = TIMER1, priority = 3, local = [consumer, sampler, cost, detected_tx, failing: bool = false])]
-    fn sample(cx: sample::Context) {
+    #[task(binds = TIMER1, priority = 4, shared = [sampling], local = [consumer, failing: bool = false])]
+    fn sample(mut cx: sample::Context) {
         let sample::LocalResources {
-            consumer,
-            sampler,
-            cost,
-            detected_tx,
-            failing,
-            ..
+            consumer, failing, ..
         } = cx.local;
+        // At the resource's ceiling: no lock is taken.
+        cx.shared
+            .sampling
+            .lock(|sampling| sample_one(sampling, consumer, failing));
+    }
+
+    /// [`sample`]'s body.
+    #[inline(always)]
+    fn sample_one(
+        Sampling {
+            sampler,
+            detected_tx,
+            cost,
+        }: &mut Sampling,
+        consumer: &mut Consumer<'static, Item, QUEUE>,
+        failing: &mut bool,
+    ) {
         // Emulation only: spread the readings over the timer's tick (the instructions
         // before `at` are not counted).
         timers::dither(cost.samples);
         let at = timers::ticks();
         timers::acknowledge_sample();
+        // From here to the driver's read, the emulation: the trace's next item, a
+        // trace's start (the part's `init`), the part's latch and the bus. None of it
+        // is a sample's cost (on the device the part converts, and the SPI peripheral
+        // moves the bytes).
+        let emulation = timers::ticks();
         let mut item = consumer.dequeue();
         if consumer.len() < RESUME_AT {
             rtic::pend(Interrupt::UART1RX);
         }
-        // A trace's start (the part's `init`) is no sample's cost.
-        let mut start_ticks = 0;
         if let Some(Item::Start(rate)) = item {
-            let begun = timers::ticks();
-            if Sampler::start(sampler, f32::from(rate)).is_err() {
+            if Sampler::start(sampler, rate).is_err() {
                 hand_over(detected_tx, Detected::Sensor(SensorFault::NotStarted));
             }
             *cost = Cost::default();
             item = consumer.dequeue();
-            start_ticks = timers::ticks().wrapping_sub(begun);
         }
         let Some(live) = sampler.as_mut() else {
             return;
@@ -249,36 +275,33 @@ mod app {
                 rtic::pend(Interrupt::TIMER1);
             }
             Some(Item::Sample(words)) => {
-                let begun = timers::ticks();
                 let read = live.latch(words).then(|| live.read());
-                let bus_ticks = timers::ticks().wrapping_sub(begun);
-                let event = match read {
+                let emulation_ticks = timers::ticks().wrapping_sub(emulation);
+                let found = match read {
                     Some(Ok(words)) => {
                         *failing = false;
-                        live.estimate(words)
+                        live.estimate(words, at)
                     }
                     failed => {
                         // The sample is lost; one report per run of losses.
                         let sample = live.lose_sample();
-                        if !core::mem::replace(failing, true) {
-                            let fault = match failed {
+                        let first = !core::mem::replace(failing, true);
+                        if first {
+                            live.found_fault(match failed {
                                 Some(_) => SensorFault::ReadFailed { sample },
                                 None => SensorFault::Stalled { sample },
-                            };
-                            hand_over(detected_tx, Detected::Sensor(fault));
+                            });
                         }
-                        None
+                        first
                     }
                 };
-                if let Some(event) = event {
-                    hand_over(detected_tx, Detected::event(live, event, at));
+                if found {
+                    rtic::pend(Interrupt::UART2RX);
                 }
-                // From the interrupt's start, without the emulated bus (a real part's
-                // read is the I²C peripheral's time, not the core's).
+                // From the interrupt's start, without the emulation.
                 let work = timers::ticks()
                     .wrapping_sub(at)
-                    .wrapping_sub(bus_ticks)
-                    .wrapping_sub(start_ticks);
+                    .wrapping_sub(emulation_ticks);
                 cost.samples += 1;
                 cost.ticks += u64::from(work);
                 cost.max_ticks = cost.max_ticks.max(work);
@@ -296,12 +319,30 @@ mod app {
                         truncated,
                         work_instructions: cost.ticks * u64::from(per_tick),
                         work_max_instructions: cost.max_ticks * per_tick,
+                        resolve_max_instructions: cost.max_resolve_ticks * per_tick,
                     }),
                 );
             }
             // Only while `feed` has not caught up (emulation): wait for it.
             Some(Item::Start(_)) | None => timers::stop_sampling(),
         }
+    }
+
+    /// What `sample` found, resolved one priority below it (`live::tasks::resolve`):
+    /// its instructions count in the mean per-sample work, and their most in
+    /// `resolve_max_instructions`.
+    #[task(binds = UART2RX, priority = 3, shared = [sampling])]
+    fn resolve(mut cx: resolve::Context) {
+        cx.shared.sampling.lock(|sampling| {
+            let begun = timers::ticks();
+            if let Some(live) = sampling.sampler.as_mut() {
+                tasks::resolve(live, &mut sampling.detected_tx, Interrupt::DUALTIMER);
+            }
+            let work = timers::ticks().wrapping_sub(begun);
+            let cost = &mut sampling.cost;
+            cost.ticks += u64::from(work);
+            cost.max_resolve_ticks = cost.max_resolve_ticks.max(work);
+        });
     }
 
     /// Queues `detected` for `report` and pends it (`live::tasks::hand_over`).

@@ -3,8 +3,9 @@
 //!
 //! | task | runs on | priority | does |
 //! |---|---|---|---|
-//! | `sample` | GPIOTE, the LSM6DSOX's INT1 data-ready (a pulse per sample) | 3 | restarts the stall watchdog, reads the sample with the driver over SPIM3, steps the streaming estimator; hands a stroke or a fault to `report` |
-//! | `stalled` | TIMER1, the stall watchdog: no data-ready for 10 ms | 3 | hands `report` a `stalled` fault, once per stall |
+//! | `sample` | GPIOTE, the LSM6DSOX's INT1 data-ready (a pulse per sample) | 4 | restarts the stall watchdog, reads the sample with the driver over SPIM3, steps the streaming estimator; pends `resolve` when the sample found something |
+//! | `stalled` | TIMER1, the stall watchdog: no data-ready for 10 ms | 4 | hands `report` a `stalled` fault, once per stall |
+//! | `resolve` | SWI1_EGU1, pended by `sample` | 3 | computes the report the estimator deferred (a stroke, its follow-through) or takes a failed read, and hands it to `report`, before the next sample |
 //! | `report` | SWI0_EGU0, pended by `sample` | 2 | plays the planned shot at the stroke's speed, sends the live report frame unprompted, logs it (`live::report`) |
 //! | `idle` | thread mode | 0 | serves the link on UARTE0: frames in, answers out (`serve.rs`) |
 //!
@@ -47,8 +48,8 @@ mod app {
     struct Shared {
         link: Link,
         session: LiveSession,
-        /// The sampling state, shared by `sample` and `stalled` (one priority: no lock).
-        #[lock_free]
+        /// The sampling state, shared by `sample` and `stalled` (one priority: no lock
+        /// between them) and `resolve` (which locks it).
         sampling: Sampling,
     }
 
@@ -137,55 +138,79 @@ mod app {
     }
 
     /// The data-ready: one sample through the driver and the estimator.
-    #[task(binds = GPIOTE, priority = 3, shared = [sampling], local = [gpiote])]
-    fn sample(cx: sample::Context) {
+    #[task(binds = GPIOTE, priority = 4, shared = [sampling], local = [gpiote])]
+    fn sample(mut cx: sample::Context) {
         let at = DWT::cycle_count();
         cx.local.gpiote.channel0().reset_events();
-        let Sampling {
+        // At the resource's ceiling: no lock is taken.
+        cx.shared.sampling.lock(|sampling| sample_one(sampling, at));
+    }
+
+    /// [`sample`]'s body.
+    #[inline(always)]
+    fn sample_one(
+        Sampling {
             sampler,
-            detected_tx,
             watchdog,
             failing,
             stalled,
-        } = cx.shared.sampling;
+            ..
+        }: &mut Sampling,
+        at: u32,
+    ) {
         let Some(live) = sampler.as_mut() else {
             return;
         };
         watchdog.start(STALL_US);
         *stalled = false;
-        let event = match live.read() {
+        let found = match live.read() {
             Ok(words) => {
                 *failing = false;
-                live.estimate(words)
+                live.estimate(words, at)
             }
             Err(_) => {
                 // The sample is lost; one report per run of losses.
                 let sample = live.lose_sample();
-                if !core::mem::replace(failing, true) {
-                    hand_over(
-                        detected_tx,
-                        Detected::Sensor(SensorFault::ReadFailed { sample }),
-                    );
+                let first = !core::mem::replace(failing, true);
+                if first {
+                    live.found_fault(SensorFault::ReadFailed { sample });
                 }
-                None
+                first
             }
         };
-        if let Some(event) = event {
-            hand_over(detected_tx, Detected::event(live, event, at));
+        if found {
+            rtic::pend(Interrupt::SWI1_EGU1);
         }
+    }
+
+    /// What `sample` found, resolved one priority below it (`live::tasks::resolve`).
+    #[task(binds = SWI1_EGU1, priority = 3, shared = [sampling])]
+    fn resolve(mut cx: resolve::Context) {
+        cx.shared.sampling.lock(|sampling| {
+            if let Some(live) = sampling.sampler.as_mut() {
+                tasks::resolve(live, &mut sampling.detected_tx, Interrupt::SWI0_EGU0);
+            }
+        });
     }
 
     /// The stall watchdog fired: no data-ready for [`STALL_US`]. Reported once; the
     /// next data-ready restarts the watchdog (the part's pulses need no re-arming).
-    #[task(binds = TIMER1, priority = 3, shared = [sampling])]
-    fn stalled(cx: stalled::Context) {
-        let Sampling {
+    #[task(binds = TIMER1, priority = 4, shared = [sampling])]
+    fn stalled(mut cx: stalled::Context) {
+        cx.shared.sampling.lock(stall);
+    }
+
+    /// [`stalled`]'s body.
+    #[inline(always)]
+    fn stall(
+        Sampling {
             sampler,
             detected_tx,
             watchdog,
             stalled,
             ..
-        } = cx.shared.sampling;
+        }: &mut Sampling,
+    ) {
         watchdog.reset_event();
         let Some(live) = sampler.as_ref() else {
             return;

@@ -3,7 +3,7 @@
 /// The schema's identity: FNV-1a (32 bits) of the postcard encoding of
 /// `postcard-schema`'s description of [`crate::Request`] and [`crate::Response`]. Every frame carries
 /// it; `tests/schema.rs` recomputes it and fails when the schema changed without it.
-pub const SCHEMA_HASH: u32 = 0xB2EA_E6F4;
+pub const SCHEMA_HASH: u32 = 0x632B_76BB;
 
 /// Most raw samples in one stroke chunk. 128 keeps a request (568 B with 256) small on
 /// the device's stack, which holds it a few times over while it is decoded.

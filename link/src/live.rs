@@ -118,8 +118,12 @@ pub struct TraceEnd {
     /// Per-sample work, the emulated bus excluded: the instructions of every sample
     /// (resolution 40 per sample)...
     pub work_instructions: u64,
-    /// ...and the most of any one.
+    /// ...and the most of any one sampling interrupt...
     pub work_max_instructions: u32,
+    /// ...and of any one report the sampling interrupt left to the resolving task (a
+    /// stroke's figures, a follow-through: once per report, one priority below the
+    /// sampling interrupt; in `work_instructions`, not in `work_max_instructions`).
+    pub resolve_max_instructions: u32,
 }
 
 impl TraceEnd {

@@ -1171,14 +1171,17 @@ fn live_reports() -> BoxedStrategy<LiveReport> {
             Just(SensorFault::NotStarted),
         ]
         .prop_map(LiveReport::Sensor),
-        1 => (u64s(), any::<bool>(), u64s(), u32s()).prop_map(|(samples, truncated, work, max)| {
-            LiveReport::TraceEnd(TraceEnd {
-                samples,
-                truncated,
-                work_instructions: work,
-                work_max_instructions: max,
-            })
-        }),
+        1 => (u64s(), any::<bool>(), u64s(), u32s(), u32s()).prop_map(
+            |(samples, truncated, work, max, resolve_max)| {
+                LiveReport::TraceEnd(TraceEnd {
+                    samples,
+                    truncated,
+                    work_instructions: work,
+                    work_max_instructions: max,
+                    resolve_max_instructions: resolve_max,
+                })
+            }
+        ),
         1 => (u32s(), f32s(), f32s()).prop_map(|(stroke, length, time)| {
             LiveReport::FollowThrough(FollowThrough {
                 stroke,

@@ -749,3 +749,52 @@ fn the_bench_stream_gives_its_strokes_and_faults() {
         std::fs::write(&path, bytes).unwrap();
     }
 }
+
+/// Deferred reports (`StreamConfig::defer_reports`, for a sampling interrupt that
+/// leaves the costly work to a lower priority) are the reports of the plain estimator,
+/// found on the same samples: on the bench stream (strokes, a double hit, a knock) with
+/// the follow-through measured, no push reports anything itself, `resolve` after it gives
+/// what the plain push returned, and the state between samples is the plain one (a
+/// stroke runs on the same samples). Every report, block end and rest end is deferred.
+#[test]
+fn deferred_reports_are_the_plain_ones_on_the_same_samples() {
+    let (accel, pitch, _, _) = bench_stream();
+    let config = StreamConfig {
+        follow_through: true,
+        ..StreamConfig::new(FS as f32)
+    };
+    let mut plain = StreamingEstimator::new(&config).unwrap();
+    let mut deferring = StreamingEstimator::new(&StreamConfig {
+        defer_reports: true,
+        ..config
+    })
+    .unwrap();
+    let (mut reports, mut follows, mut deferred) = (0, 0, 0);
+    for (i, (&a, &p)) in accel.iter().zip(&pitch).enumerate() {
+        let expected = plain.push_raw(a, Some(p));
+        assert_eq!(deferring.push_raw(a, Some(p)), None, "sample {i}");
+        let was_deferred = deferring.deferred();
+        let resolved = deferring.resolve();
+        assert_eq!(resolved, expected, "sample {i}");
+        assert!(was_deferred || expected.is_none(), "sample {i}");
+        assert!(!deferring.deferred() && deferring.resolve().is_none());
+        assert_eq!(deferring.in_stroke(), plain.in_stroke(), "sample {i}");
+        assert_eq!(deferring.rest_end(), plain.rest_end(), "sample {i}");
+        reports += usize::from(expected.is_some());
+        follows += usize::from(matches!(expected, Some(StreamEvent::FollowThrough { .. })));
+        deferred += usize::from(was_deferred);
+    }
+    // The five strokes, the double hit, the knock and follow-throughs.
+    assert!(
+        reports >= 7 + 3 && follows >= 3,
+        "{reports} reports, {follows} follow-throughs"
+    );
+    // A block end every 25 ms (166 samples at 6667 Hz), the reports and the rests' ends
+    // (a few a stroke) on other samples.
+    let block_ends = accel.len() / 166;
+    assert!(
+        (block_ends + reports..=block_ends + reports + 50).contains(&deferred),
+        "{deferred} samples deferred work, {block_ends} block ends, {reports} reports"
+    );
+    assert_eq!(deferring.finish(), plain.finish());
+}

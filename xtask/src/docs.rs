@@ -252,7 +252,10 @@ fn within_layout_slack(spec: &str, was: &str, now: &str) -> bool {
         if spec.ends_with("-work-mean") {
             return was.abs_diff(now) <= LIVE_MEAN_SLACK;
         }
-        if spec.ends_with("-work-max") || spec == "figure live-latency-max" {
+        if spec.ends_with("-work-max")
+            || spec.ends_with("-resolve-max")
+            || spec == "figure live-latency-max"
+        {
             return was.abs_diff(now) <= LIVE_TICK_SLACK;
         }
     }

@@ -136,6 +136,7 @@ fn summary_line(end: Option<&TraceEnd>, strokes: usize, faults: usize) -> Value 
         "truncated": end.map(|e| e.truncated),
         "work_mean_instructions": end.map(TraceEnd::work_mean_instructions),
         "work_max_instructions": end.map(|e| e.work_max_instructions),
+        "resolve_max_instructions": end.map(|e| e.resolve_max_instructions),
     }})
 }
 

@@ -70,11 +70,12 @@ fn live_summary(f: &mut fmt::Formatter<'_>, report: &LiveReport) -> fmt::Result 
         LiveReport::TraceEnd(end) => {
             write!(
             f,
-            "live: trace ended after {} samples{}; {:.0} instructions per sample (mean), {} (max)",
+            "live: trace ended after {} samples{}; {:.0} instructions per sample (mean), {} (max), {} resolving a report (max)",
             end.samples,
             if end.truncated { " (the file was cut short)" } else { "" },
             end.work_mean_instructions(),
-            end.work_max_instructions
+            end.work_max_instructions,
+            end.resolve_max_instructions
         )
         }
     }

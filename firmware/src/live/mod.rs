@@ -10,43 +10,10 @@ pub mod sampler;
 #[cfg(feature = "live-cue")]
 pub mod tasks;
 
-use cuesight_link::live::{SensorFault, StrokeMetrics, TraceEnd};
-use cuesight_sensors::{StreamEvent, StreamStroke};
+use cuesight_link::live::StrokeMetrics;
+use cuesight_sensors::StreamStroke;
 
-/// What the sampling task hands to the reporting task.
-#[derive(Clone, Copy)]
-pub enum Detected {
-    /// The estimator's report, and the board's clock (QEMU: TIMER0 ticks; nRF52840:
-    /// DWT cycles) when the interrupt that delivered the detecting sample began.
-    Event {
-        /// The report.
-        event: StreamEvent,
-        /// When its interrupt began.
-        at: u32,
-        /// Samples lost before it (the estimator's indices do not count them).
-        lost: u64,
-        /// The stroke's yaw-rate statistics (its wobble, computed by the reporting
-        /// task, not in the interrupt).
-        wobble: cuesight_sensors::Wobble,
-    },
-    /// The IMU failed.
-    Sensor(SensorFault),
-    /// The trace ended.
-    End(TraceEnd),
-}
-
-impl Detected {
-    /// The estimator's `event`, detected on the sample whose interrupt began at `at`.
-    #[inline(never)]
-    pub fn event<P>(sampler: &sampler::Sampler<P>, event: StreamEvent, at: u32) -> Self {
-        Detected::Event {
-            event,
-            at,
-            lost: sampler.trace_index(0),
-            wobble: sampler.wobble(),
-        }
-    }
-}
+pub use sampler::Detected;
 
 /// A stroke's metrics for the live report (`docs/sensors.md` §11).
 pub fn metrics(stroke: &StreamStroke, wobble_dps: f32) -> StrokeMetrics {

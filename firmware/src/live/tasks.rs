@@ -9,6 +9,7 @@ use heapless::spsc::{Consumer, Producer};
 use static_cell::ConstStaticCell;
 
 use super::report::Reporter;
+use super::sampler::Sampler;
 use super::Detected;
 use crate::serve::{self, SharedSerial};
 use crate::{board, shots};
@@ -119,6 +120,21 @@ pub fn hand_over<I: cortex_m::interrupt::InterruptNumber>(
 ) {
     let _ = detected_tx.enqueue(detected);
     rtic::pend(report);
+}
+
+/// The resolving task's body: what the sampling task found on its last sample (a
+/// deferred report, computed now, or a fault of the part) goes to the reporting task.
+/// It runs one priority below the sampling task, above everything else, so before the
+/// next sample (`live::sampler`).
+#[inline(always)]
+pub fn resolve<P, I: cortex_m::interrupt::InterruptNumber>(
+    sampler: &mut Sampler<P>,
+    detected_tx: &mut Producer<'static, Detected, DETECTED>,
+    report: I,
+) {
+    if let Some(detected) = sampler.take_found() {
+        hand_over(detected_tx, detected, report);
+    }
 }
 
 /// The reporting task: each waiting detection becomes a live report frame, sent

@@ -51,6 +51,14 @@ pub struct StreamConfig {
     /// events it got before. Only with the crate's `follow-through` feature.
     #[cfg(feature = "follow-through")]
     pub follow_through: bool,
+    /// Defer the costly work (a stroke's impact, a follow-through's report, a block
+    /// end's rest tests, a rest's end with the rest of its sample's step) out of the
+    /// sample that finds it: that sample's push returns
+    /// `None` and sets [`super::StreamingEstimator::deferred`], and
+    /// [`super::StreamingEstimator::resolve`] does it. For a sampling
+    /// interrupt that must stay short, with the report computed at a lower priority
+    /// before the next sample (`docs/sensors.md` §11). Default `false`.
+    pub defer_reports: bool,
 }
 
 impl StreamConfig {
@@ -66,6 +74,7 @@ impl StreamConfig {
             min_speed: 0.05,
             #[cfg(feature = "follow-through")]
             follow_through: false,
+            defer_reports: false,
         }
     }
 }
@@ -110,6 +119,21 @@ impl fmt::Display for StreamConfigError {
 }
 
 impl core::error::Error for StreamConfigError {}
+
+/// A validated [`StreamConfig`], with everything [`super::StreamingEstimator`] derives
+/// from it: [`super::StreamingEstimator::with_plan`] starts an estimator from it.
+#[derive(Clone, Copy, Debug)]
+pub struct StreamPlan(pub(super) Plan);
+
+impl StreamPlan {
+    /// Validates `config` (the checks of [`super::StreamingEstimator::new`]).
+    pub const fn new(config: &StreamConfig) -> Result<Self, StreamConfigError> {
+        match Plan::new(config) {
+            Ok(plan) => Ok(Self(plan)),
+            Err(e) => Err(e),
+        }
+    }
+}
 
 /// Sample counts and unit conversions derived from a validated [`StreamConfig`]. Every
 /// acceleration is in raw counts (`m/s² / |accel_scale|`), forward positive.
@@ -177,6 +201,8 @@ pub(crate) struct Plan {
     pub follow_skip: u32,
     #[cfg(feature = "follow-through")]
     pub follow_span: u32,
+    /// [`StreamConfig::defer_reports`].
+    pub defer: bool,
 }
 
 /// `round(seconds · rate)`, at least `at_least` (casts saturate; inputs are bounded).
@@ -325,6 +351,7 @@ impl Plan {
             } else {
                 0
             },
+            defer: config.defer_reports,
         })
     }
 }

@@ -274,6 +274,16 @@ impl StreamingEstimator {
     /// the report (module docs), built in the caller's return slot.
     #[inline(never)]
     pub(super) fn report_follow(&mut self) -> Option<StreamEvent> {
+        if self.plan.defer {
+            self.deferred = super::Deferred::Follow;
+            return None;
+        }
+        self.follow_report()
+    }
+
+    /// [`Self::report_follow`]'s report, now or deferred ([`Self::resolve`]).
+    #[inline(never)]
+    pub(super) fn follow_report(&mut self) -> Option<StreamEvent> {
         let plan = &self.plan;
         let f = &mut self.follow;
         f.span = 0;

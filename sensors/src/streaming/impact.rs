@@ -18,6 +18,8 @@ impl StreamingEstimator {
     /// The end of a step whose sample `n` starts a new impact: it ends the stroke, or
     /// is a double hit or a knock. The block end comes after the report's figures, the
     /// event last (built in the caller's return slot).
+    /// With [`super::StreamConfig::defer_reports`] it is only marked, for
+    /// [`Self::resolve`].
     #[inline(never)]
     pub(super) fn new_impact(&mut self, n: u32) -> Option<StreamEvent> {
         let r = if self.stroke.active {

@@ -76,7 +76,7 @@ mod rest;
 mod tests;
 mod wobble;
 
-pub use config::{StreamConfig, StreamConfigError, MAX_STREAM_RATE_HZ};
+pub use config::{StreamConfig, StreamConfigError, StreamPlan, MAX_STREAM_RATE_HZ};
 pub use event::{StreamEvent, StreamFault, StreamStroke};
 pub use wobble::Wobble;
 
@@ -123,6 +123,8 @@ pub struct StreamingEstimator {
     last_saturated: Option<u32>,
     /// The previous sample was not finite.
     not_finite: bool,
+    /// A report deferred by [`StreamConfig::defer_reports`], for [`Self::resolve`].
+    deferred: Deferred,
     /// `(g cos θ₀, g sin θ₀)` (m/s²), computed at the first block end.
     gravity: Option<(f32, f32)>,
     /// The stroke metrics' first-order tilt correction, `g cos θ₀ · pitch_scale · Δt /
@@ -138,6 +140,13 @@ impl StreamingEstimator {
             Ok(plan) => Ok(Self::from_plan(plan)),
             Err(e) => Err(e),
         }
+    }
+
+    /// An estimator at sample index 0 on a config validated before
+    /// ([`StreamPlan::new`]; in a `const` item, at compile time: a device that samples
+    /// at a few known rates then carries no validation code).
+    pub const fn with_plan(plan: &StreamPlan) -> Self {
+        Self::from_plan(plan.0)
     }
 
     const fn from_plan(plan: Plan) -> Self {
@@ -157,6 +166,7 @@ impl StreamingEstimator {
             last_impact: None,
             last_saturated: None,
             not_finite: false,
+            deferred: Deferred::Nothing,
             gravity: None,
             tilt_gain: 0.0,
         }
@@ -208,9 +218,10 @@ impl StreamingEstimator {
         self.block_base + self.block.pos as u64
     }
 
-    /// `true` while a stroke is being integrated (a rest has ended, no impact yet).
+    /// `true` while a stroke is being integrated (a rest has ended, no impact yet; an
+    /// impact whose report is deferred ends it).
     pub const fn in_stroke(&self) -> bool {
-        self.stroke.active
+        self.stroke.active && !matches!(self.deferred, Deferred::Impact(_))
     }
 
     /// Where the stroke being integrated starts: the end of the rest its speed is
@@ -220,6 +231,57 @@ impl StreamingEstimator {
         self.stroke
             .active
             .then(|| self.unwrap_index(self.stroke.rest_end))
+    }
+
+    /// `true` when the last push deferred work ([`StreamConfig::defer_reports`]: a
+    /// report, a block end or a rest's end, which may change [`Self::in_stroke`]): call
+    /// [`Self::resolve`] before the next push.
+    pub fn deferred(&self) -> bool {
+        !matches!(self.deferred, Deferred::Nothing)
+    }
+
+    /// The work the last push deferred, done now: its report (a stroke or one of its
+    /// faults, a follow-through), exactly what that push would have returned without
+    /// [`StreamConfig::defer_reports`], or a block end's rest tests or a rest's end
+    /// (`None`, unless the sample that ended the rest also ends something). `None`
+    /// when nothing waits.
+    ///
+    /// Call it before the next push: the report is computed from the estimator's state
+    /// at the sample that found it, which the next sample changes (the firmware's
+    /// resolving task runs at the priority just below the sampling interrupt's, so it
+    /// always comes first).
+    pub fn resolve(&mut self) -> Option<StreamEvent> {
+        match core::mem::replace(&mut self.deferred, Deferred::Nothing) {
+            Deferred::Nothing => None,
+            Deferred::Impact(n) => self.new_impact(n),
+            Deferred::BlockEnd(n) => {
+                self.end_block(n);
+                None
+            }
+            Deferred::Depart(n, a) => {
+                // The rest of `step` after the motion test (its report, if any, now).
+                self.depart(n);
+                if a < self.stroke.limit && self.new_crossing(n) {
+                    return self.new_impact(n);
+                }
+                #[cfg(feature = "follow-through")]
+                {
+                    let k = n.wrapping_sub(self.follow.from);
+                    if k < self.follow.span {
+                        if self.follow.ready {
+                            return self.follow_report();
+                        }
+                        self.follow.add(k, a);
+                    }
+                }
+                if self.block.pos == self.plan.block {
+                    self.end_block(n);
+                }
+                None
+            }
+            #[cfg(feature = "follow-through")]
+            Deferred::Follow => self.follow_report(),
+        }
     }
 
     /// The unwrapped index of sample `k` (within 2³¹ samples of the current block).
@@ -260,11 +322,20 @@ impl StreamingEstimator {
         if self.stroke.active {
             self.integrate(n, a, p);
         }
-        if self.run.armed {
-            self.motion_test(n, w_sum);
+        if self.run.armed && self.moved(w_sum) {
+            if self.plan.defer && finite {
+                // The rest of the step after the rest's end too (`resolve`).
+                self.deferred = Deferred::Depart(n, a);
+                return None;
+            }
+            self.depart(n);
         }
         // The impact threshold: `stroke.limit` is `plan.knock` between strokes.
         if finite && a < self.stroke.limit && self.new_crossing(n) {
+            if self.plan.defer {
+                self.deferred = Deferred::Impact(n);
+                return None;
+            }
             return self.new_impact(n);
         }
         if report_non_finite {
@@ -284,7 +355,11 @@ impl StreamingEstimator {
             }
         }
         if self.block.pos == self.plan.block {
-            self.end_block(n);
+            if self.plan.defer {
+                self.deferred = Deferred::BlockEnd(n);
+            } else {
+                self.end_block(n);
+            }
         }
         None
     }
@@ -341,6 +416,23 @@ impl StreamingEstimator {
     fn sample(&self, i: u32) -> f32 {
         self.prefix(i.wrapping_add(1)).wrapping_sub(self.prefix(i)) as f32
     }
+}
+
+/// What [`StreamingEstimator::resolve`] has to compute.
+#[derive(Clone, Copy, Debug)]
+enum Deferred {
+    Nothing,
+    /// The impact crossing at this sample ([`StreamingEstimator::new_impact`]).
+    Impact(u32),
+    /// The block ending at this sample (every 25 ms: the rest tests, `rest.rs`). It
+    /// reports nothing itself.
+    BlockEnd(u32),
+    /// The motion test fired at this sample, of these counts: the rest's end (which
+    /// may start a stroke or re-anchor one) and the rest of the step.
+    Depart(u32, i32),
+    /// The follow-through's report.
+    #[cfg(feature = "follow-through")]
+    Follow,
 }
 
 /// `a` is at or after `b`, for two sample indices less than 2³¹ apart.

@@ -132,16 +132,14 @@ impl StreamingEstimator {
     /// against the rest level, as `|Σ − W·level|² > max(36 W σ², (W·floor)²)` (the
     /// windowed estimator's `|mean − level| > max(6σ/√W, floor)`, squared, times W).
     #[inline(always)]
-    pub(super) fn motion_test(&mut self, n: u32, w_sum: i32) {
+    pub(super) fn moved(&self, w_sum: i32) -> bool {
         let deviation = w_sum as f32 - self.run.w_level;
-        if deviation * deviation > self.run.threshold_sq {
-            self.depart(n);
-        }
+        deviation * deviation > self.run.threshold_sq
     }
 
     /// The motion test fired at sample `n`: the rest ends at `n + 1 − W − guard`.
     #[inline(never)]
-    fn depart(&mut self, n: u32) {
+    pub(super) fn depart(&mut self, n: u32) {
         let (blocks, rest_start) = (self.run.blocks, self.run.rest_start);
         self.run.abandon();
         // The block holding the departure is not a rest block: a new run starts after it.

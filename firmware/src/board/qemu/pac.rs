@@ -24,6 +24,9 @@ pub enum Interrupt {
     /// CMSDK UART1 receive. UART1 is unused: its line is pended by software for the
     /// task that reads the IMU trace (`app.rs`).
     UART1RX = 2,
+    /// CMSDK UART2 receive. UART2 is unused: its line is pended by software for the
+    /// task that resolves what a sample found (`app.rs`).
+    UART2RX = 4,
     /// CMSDK TIMER1: the emulated IMU's data-ready, at its output data rate.
     TIMER1 = 9,
     /// The dual timer, unused as a timer: the software tasks' dispatcher.

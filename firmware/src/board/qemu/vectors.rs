@@ -17,6 +17,7 @@ extern "C" {
     fn DefaultHandler();
     fn UART0RX();
     fn UART1RX();
+    fn UART2RX();
     fn TIMER1();
     fn DUALTIMER();
 }
@@ -26,6 +27,7 @@ const fn table() -> [unsafe extern "C" fn(); LINES] {
     let mut lines = [DefaultHandler as unsafe extern "C" fn(); LINES];
     lines[Interrupt::UART0RX as usize] = UART0RX;
     lines[Interrupt::UART1RX as usize] = UART1RX;
+    lines[Interrupt::UART2RX as usize] = UART2RX;
     lines[Interrupt::TIMER1 as usize] = TIMER1;
     lines[Interrupt::DUALTIMER as usize] = DUALTIMER;
     lines
