@@ -5,8 +5,10 @@
 //! (`firmware/src/board/qemu/trace_file.rs`), in the binary form of
 //! `firmware/src/live/feed.rs`: the magic `CUE1`, the output data rate (`u16` Hz) and
 //! the sample count (`u32`), then each sample's six `i16` words, all little-endian.
-//! [`trace_binary`] writes it; [`boot`] puts it in a fresh directory and boots QEMU
-//! there with `-icount shift=0,sleep=off`: one instruction per virtual nanosecond (the
+//! [`trace_binary`] writes it; [`boot`] makes [`TRACE_FILE`] a named pipe in a fresh
+//! directory, streams the trace into it from a thread of its own as the firmware reads
+//! (the pipe holds 64 KiB; the firmware's semihosting read waits for the next bytes,
+//! which stops QEMU's virtual clock with it), and boots QEMU there with `-icount shift=0,sleep=off`: one instruction per virtual nanosecond (the
 //! instruction counts the firmware reports), and no real-time waits (an idle guest jumps
 //! to its next timer), so a trace plays as fast as QEMU runs.
 
@@ -96,9 +98,11 @@ pub fn trace_binary_with_faults(
     out
 }
 
-/// A directory of its own for one run (removed on drop).
+/// A directory of its own for one run (removed on drop), with the trace's pipe.
 pub struct RunDir {
     path: PathBuf,
+    /// The thread writing the trace into [`TRACE_FILE`], once [`Self::stream`] started it.
+    writer: Option<std::thread::JoinHandle<io::Result<()>>>,
 }
 
 impl RunDir {
@@ -111,17 +115,68 @@ impl RunDir {
         let path =
             std::env::temp_dir().join(format!("cuesight-live-{}-{nanos}", std::process::id()));
         fs::create_dir_all(&path)?;
-        Ok(Self { path })
+        Ok(Self { path, writer: None })
     }
 
     /// Its path.
     pub fn path(&self) -> &Path {
         &self.path
     }
+
+    /// Makes [`TRACE_FILE`] a named pipe and writes `trace` into it from a thread: the
+    /// write starts when the firmware opens the pipe at boot, and the pipe's end (the
+    /// thread closing it) is the trace's end the firmware reads.
+    #[cfg(unix)]
+    pub fn stream(&mut self, trace: Vec<u8>) -> io::Result<()> {
+        use std::io::Write;
+        let fifo = self.path.join(TRACE_FILE);
+        make_fifo(&fifo)?;
+        self.writer = Some(std::thread::spawn(move || {
+            // Opening for writing waits for the reader (the firmware's `SYS_OPEN`).
+            let mut pipe = fs::OpenOptions::new().write(true).open(&fifo)?;
+            pipe.write_all(&trace)
+        }));
+        Ok(())
+    }
+
+    /// Without named pipes: the trace as a file in the directory.
+    #[cfg(not(unix))]
+    pub fn stream(&mut self, trace: Vec<u8>) -> io::Result<()> {
+        fs::write(self.path.join(TRACE_FILE), trace)
+    }
+}
+
+/// `mkfifo(path, 0600)`.
+#[cfg(unix)]
+fn make_fifo(path: &Path) -> io::Result<()> {
+    use std::os::unix::ffi::OsStrExt;
+    let name = std::ffi::CString::new(path.as_os_str().as_bytes())
+        .map_err(|_| io::Error::other("a NUL in the run directory's path"))?;
+    // SAFETY: `name` is a NUL-terminated path that lives across the call.
+    #[allow(unsafe_code)]
+    let status = unsafe { libc::mkfifo(name.as_ptr(), 0o600) };
+    if status == 0 {
+        Ok(())
+    } else {
+        Err(io::Error::last_os_error())
+    }
 }
 
 impl Drop for RunDir {
     fn drop(&mut self) {
+        // A writer still waiting for the firmware (which never opened the pipe, or
+        // stopped reading) is let go: a non-blocking reader releases its `open`, and
+        // closing it makes its writes fail (EPIPE).
+        #[cfg(unix)]
+        if let Some(writer) = self.writer.take() {
+            use std::os::unix::fs::OpenOptionsExt;
+            let release = fs::OpenOptions::new()
+                .read(true)
+                .custom_flags(libc::O_NONBLOCK)
+                .open(self.path.join(TRACE_FILE));
+            drop(release);
+            let _ = writer.join();
+        }
         let _ = fs::remove_dir_all(&self.path);
     }
 }
@@ -134,8 +189,9 @@ pub fn live_command(elf: &Path, dir: &Path) -> Command {
     qemu
 }
 
-/// Writes `binary` (from [`trace_binary`]) as the trace in a new run directory and
-/// boots `elf` there. Keep the directory until the firmware has exited.
+/// Streams `binary` (from [`trace_binary`]) as the trace through a named pipe in a new
+/// run directory and boots `elf` there. Keep the directory until the firmware has
+/// exited.
 pub fn boot(
     elf: &Path,
     defmt_print: Option<&Path>,
@@ -143,8 +199,8 @@ pub fn boot(
 ) -> Result<(Firmware, RunDir), FirmwareError> {
     // QEMU runs in the run directory: the ELF's path must not be relative.
     let elf = &elf.canonicalize()?;
-    let dir = RunDir::new()?;
-    fs::write(dir.path().join(TRACE_FILE), binary)?;
+    let mut dir = RunDir::new()?;
+    dir.stream(binary.to_vec())?;
     let firmware = Firmware::boot_command(elf, defmt_print, live_command(elf, dir.path()))?;
     Ok((firmware, dir))
 }

@@ -254,7 +254,7 @@ fn within_layout_slack(spec: &str, was: &str, now: &str) -> bool {
         }
         if spec.ends_with("-work-max")
             || spec.ends_with("-resolve-max")
-            || spec == "figure live-latency-max"
+            || spec.ends_with("latency-max")
         {
             return was.abs_diff(now) <= LIVE_TICK_SLACK;
         }

@@ -166,7 +166,7 @@ pub fn run(args: &Args) -> Result {
     };
     let defmt_print = tools::defmt_print()?;
     eprintln!(
-        "xtask live: {} samples at {} Hz from {} (QEMU -icount shift=0,sleep=off; the trace file through semihosting)",
+        "xtask live: {} samples at {} Hz from {} (QEMU -icount shift=0,sleep=off; the trace streamed through a named pipe, read with semihosting)",
         samples.len(),
         args.odr,
         args.trace.display()

@@ -92,6 +92,7 @@ const MASK: usize = RING - 1;
 /// Streaming cue-speed estimator. Feed every sample in order with [`Self::push_raw`]
 /// (raw words) or [`Self::push`] (SI units); call [`Self::finish`] when the stream ends.
 #[derive(Clone, Debug)]
+#[repr(C)]
 pub struct StreamingEstimator {
     plan: Plan,
     /// Index of the current block's first sample, unwrapped (`block.start` is its low
@@ -101,9 +102,6 @@ pub struct StreamingEstimator {
     /// (wrapping: only differences over a bounded span are used).
     p: i32,
     c: i32,
-    /// `ring[k & MASK] = [P(k), C(k)]`, the prefix sums before sample `k`, for the last
-    /// `RING` values of `k`.
-    ring: [[i32; 2]; RING],
     block: Block,
     run: Run,
     stroke: Stroke,
@@ -123,14 +121,18 @@ pub struct StreamingEstimator {
     last_saturated: Option<u32>,
     /// The previous sample was not finite.
     not_finite: bool,
-    /// A report deferred by [`StreamConfig::defer_reports`], for [`Self::resolve`].
-    deferred: Deferred,
     /// `(g cos θ₀, g sin θ₀)` (m/s²), computed at the first block end.
     gravity: Option<(f32, f32)>,
     /// The stroke metrics' first-order tilt correction, `g cos θ₀ · pitch_scale · Δt /
     /// scale`: velocity counts per count·sample of mid-sample elevation change (set
     /// with `gravity`; `phases.rs`).
     tilt_gain: f32,
+    /// `ring[k & MASK] = [P(k), C(k)]`, the prefix sums before sample `k`, for the last
+    /// `RING` values of `k` (last: the fields before it stay within the Cortex-M4F's
+    /// 1,020-byte reach of a floating-point load from the estimator's address).
+    ring: [[i32; 2]; RING],
+    /// A report deferred by [`StreamConfig::defer_reports`], for [`Self::resolve`].
+    deferred: Deferred,
 }
 
 impl StreamingEstimator {
@@ -323,7 +325,8 @@ impl StreamingEstimator {
             self.integrate(n, a, p);
         }
         if self.run.armed && self.moved(w_sum) {
-            if self.plan.defer && finite {
+            // (Never on a non-finite sample: `non_finite` abandoned the run.)
+            if self.plan.defer {
                 // The rest of the step after the rest's end too (`resolve`).
                 self.deferred = Deferred::Depart(n, a);
                 return None;

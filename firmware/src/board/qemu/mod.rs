@@ -3,8 +3,8 @@
 //!
 //! * **Link:** CMSDK APB UART0 at `0x4000_4000` ([`uart`]), which QEMU connects to its
 //!   first `-serial` chardev (`-serial stdio` in `cargo xtask`).
-//! * **IMU trace** (the `live` feature): a file the host writes ([`trace_file`], read through semihosting in
-//!   chunks; `crate::live::feed`), whose samples the emulated LSM6DSOX gives out one
+//! * **IMU trace** (the `live` feature): a named pipe the host streams the trace into
+//!   ([`trace_file`], read through semihosting in chunks; `crate::live::feed`), whose samples the emulated LSM6DSOX gives out one
 //!   per TIMER1 period ([`timers`]), as the part's data-ready would.
 //! * **Interrupts:** with the `live` feature RTIC 2 drives them ([`pac`] names the lines
 //!   it binds); without it no handler runs and UART0's receive interrupt only wakes

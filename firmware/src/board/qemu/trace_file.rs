@@ -1,14 +1,17 @@
-//! The IMU trace, read from a file on the host through Arm semihosting (`SYS_OPEN`,
+//! The IMU trace, streamed in by the host through Arm semihosting (`SYS_OPEN`,
 //! `SYS_READ`; Arm IHI 0077 (Semihosting for AArch32 and AArch64) §6.1, §6.9), in
 //! chunks, as the emulated IMU needs samples.
 //!
-//! The file is [`TRACE_FILE`] in QEMU's working directory, in the binary form of
-//! `crate::live::feed` (`cargo xtask live` writes it from a CSV trace). Why not the
-//! board's second UART: a CMSDK UART holds one byte and QEMU hands it one byte per
-//! main-loop turn, measured at 14.5 KB/s under `-icount shift=0` (the 531,682-byte
-//! binary of `three-strokes-6667.csv` took 36.6 s to arrive), which would take the
-//! acceptance run of 100 strokes past half an hour; a semihosting read moves a whole
-//! chunk in one trap.
+//! [`TRACE_FILE`] in QEMU's working directory is a named pipe the host writes the trace
+//! into as the firmware reads it (`cuesight_host::live::boot`, which `cargo xtask live`
+//! and the tests use; a plain file works too), in the binary form of
+//! `crate::live::feed`. A read waits in QEMU for the host's next bytes, with the virtual
+//! clock stopped (`-icount`), and only the pipe's end (the host closing it) ends the
+//! trace. Why not the board's second UART: a CMSDK UART holds one byte and QEMU hands it
+//! one byte per main-loop turn, measured at 14.5 KB/s under `-icount shift=0` (the
+//! 531,682-byte binary of `three-strokes-6667.csv` took 36.6 s to arrive), which would
+//! take the acceptance run of 100 strokes (41 MB) past half an hour; a semihosting read
+//! moves up to a whole chunk in one trap.
 
 use cortex_m_semihosting::{nr, syscall};
 
@@ -38,13 +41,21 @@ impl TraceFile {
         (handle as isize >= 0).then_some(Self { handle })
     }
 
-    /// Reads up to `buf.len()` bytes; the count read (0 at the end of the file or on a
-    /// failed read).
+    /// Fills `buf`; the count read, short only at the end of the stream (or on a failed
+    /// read). A pipe's read returns what has arrived, so this reads until `buf` is full.
     #[allow(unsafe_code)]
     pub fn read(&mut self, buf: &mut [u8]) -> usize {
-        // SAFETY: SYS_READ writes at most `buf.len()` bytes into `buf` and returns the
-        // number it did *not* read.
-        let unread = unsafe { syscall!(READ, self.handle, buf.as_mut_ptr(), buf.len()) };
-        buf.len().saturating_sub(unread)
+        let mut filled = 0;
+        while let Some(rest) = buf.get_mut(filled..).filter(|rest| !rest.is_empty()) {
+            // SAFETY: SYS_READ writes at most `rest.len()` bytes into `rest` and returns
+            // the number it did *not* read.
+            let unread = unsafe { syscall!(READ, self.handle, rest.as_mut_ptr(), rest.len()) };
+            let read = rest.len().saturating_sub(unread);
+            if read == 0 {
+                break;
+            }
+            filled += read;
+        }
+        filled
     }
 }
