@@ -43,11 +43,20 @@
 //!
 //! `Auto`'s ladder ([`select`]) is the Pareto front of `docs/tradeoff.md`: `Ideal` where
 //! neither a friction impulse nor a restitution loss acts, else `KimGrip`, else `Exact`.
+//! At a tolerance of at least [`KIM_GRIP_DECLARED_BOUND`] (5e-3) a scene inside
+//! `KimGrip`'s validity domain goes to `KimGrip` on that bound alone, without the
+//! features above.
 
 use crate::impact::Impact;
 use crate::kim_grip::initial_slip;
 use crate::model::Model;
 use crate::params::Params;
+
+/// `KimGrip`'s error `max(|Δv|, R|Δω|) / U` anywhere in its validity domain
+/// ([`crate::validity::kim_grip`]), as declared there and held by the domain map on
+/// every scene it answers (`host-tests/tests/domain.rs`: within 0.25 % of U in velocity
+/// and 0.5 % in R ω; issue 16, item 3's figures).
+pub const KIM_GRIP_DECLARED_BOUND: f32 = 5e-3;
 
 /// Calibrated factors (see module docs).
 const KIM_GRIP_FACTOR: f32 = 0.06;
@@ -96,9 +105,30 @@ pub fn error_estimate(params: &Params, impact: &Impact, model: Model) -> f32 {
 /// estimate would allow it: `Auto` then jumped by up to `T` between μ = 0 (`Ideal`) and
 /// the smallest μ (the next tier), where it is continuous
 /// (`core/tests/extremes.rs`, `friction_to_zero_is_continuous`).
+///
+/// At a tolerance `KimGrip`'s declared bound meets ([`KIM_GRIP_DECLARED_BOUND`], 5e-3 of
+/// U), its validity domain alone decides: `Auto`'s `collide` checks a flag `Params`
+/// computed and evaluates `KimGrip` without the features, so that `Auto(1e-2)` costs
+/// little more than `KimGrip` (issue 16, item 5: the estimate's overhead at most a
+/// quarter of `KimGrip`'s instructions). Here the estimate is the smaller of that bound
+/// and `KimGrip`'s own estimate. Not where `Ideal` is exact (no friction, elastic):
+/// those take the full selection below, and so do nearly plastic contacts (e* < 0.01,
+/// where the domain's edge depends on whether μ_ct is zero).
 #[inline(never)]
 pub fn select(params: &Params, impact: &Impact, tolerance: f32) -> (Model, f32) {
     let f = Features::of(params, impact);
+    if declared_kim_grip(params, tolerance) {
+        // The tier `Auto` evaluates (`model::auto` decides on the flag alone, without
+        // the features), with the smaller of its two bounds.
+        // (Infinite outside the calibrated domain: the bound.)
+        let own = f.kim_grip();
+        let estimate = if own < KIM_GRIP_DECLARED_BOUND {
+            own
+        } else {
+            KIM_GRIP_DECLARED_BOUND
+        };
+        return (Model::KimGrip, estimate);
+    }
     // No friction impulse and elastic: `Ideal` leaves out nothing, its estimate is the
     // rounding (`ideal()` with `J = 0` and no restitution loss).
     if f.impulse == 0.0 && f.restitution_loss == 0.0 && f.rounding <= tolerance {
@@ -109,6 +139,15 @@ pub fn select(params: &Params, impact: &Impact, tolerance: f32) -> (Model, f32) 
         return (Model::KimGrip, kim_grip);
     }
     (Model::Exact, f.exact())
+}
+
+/// `tolerance` is one `KimGrip`'s declared bound meets and the scene is one `Auto` sends
+/// to `KimGrip` on it (computed with `params`: inside the validity domain, not
+/// frictionless and elastic, e* ≥ 0.01, so that the pick does not jump as μ_ct → 0
+/// where the domain's edge depends on it; `core/tests/extremes.rs`).
+#[inline(always)]
+pub(crate) fn declared_kim_grip(params: &Params, tolerance: f32) -> bool {
+    tolerance >= KIM_GRIP_DECLARED_BOUND && params.derived().auto_kim_grip
 }
 
 struct Features {

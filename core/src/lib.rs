@@ -56,7 +56,7 @@ pub mod validity;
 mod vector;
 
 pub use error::{Error, Field, Result};
-pub use estimate::{error_estimate, select as select_model};
+pub use estimate::{error_estimate, select as select_model, KIM_GRIP_DECLARED_BOUND};
 pub use friction::FrictionLaw;
 pub use impact::Impact;
 #[cfg(feature = "libm")]

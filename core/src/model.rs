@@ -171,6 +171,10 @@ pub fn collide_in<R: Real>(params: &Params, impact: &Impact, model: Model) -> Re
 #[inline(never)]
 fn auto<R: Real>(params: &Params, impact: &Impact, tolerance: f32) -> Result<Outcome> {
     crate::error::check(Field::Tolerance, tolerance, 0.0, 1.0, true)?;
+    // `select`'s first rung, here too: no call into it on the cheap path.
+    if crate::estimate::declared_kim_grip(params, tolerance) {
+        return crate::kim_grip::collide::<R>(params, impact);
+    }
     let (tier, _) = crate::estimate::select(params, impact, tolerance);
     collide_in::<R>(params, impact, tier)
 }

@@ -45,6 +45,11 @@ pub(crate) struct Derived {
     pub pressed_boundary: f32,
     /// `1/(ν R)` (1/m): spin change per unit specific impulse at the contact.
     pub spin_per_impulse: f32,
+    /// `Auto` at a tolerance of at least `estimate::KIM_GRIP_DECLARED_BOUND` picks
+    /// `KimGrip` on its declared bound alone (`estimate::select`): inside `KimGrip`'s
+    /// validity domain, not frictionless and elastic (where `Ideal` is exact), e* ≥
+    /// 0.01 (the domain's edge that depends on μ_ct).
+    pub auto_kim_grip: bool,
     /// The speed-dependent law `μ(v) = a + b e^{−cv}` when `KimGrip`'s speed-dependent
     /// fast path applies to it (validated ranges with `b > 0`, `c > 0`, μ_ct = 0, inside
     /// `KimGrip`'s validity domain), else `None`.
@@ -74,21 +79,22 @@ impl Derived {
         mu_ct: f32,
         radius: f32,
     ) -> Self {
+        // Inside `KimGrip`'s validity domain (`validity::kim_grip`): scenes outside it
+        // go to the general path, which refuses them, so the fast paths pay nothing for
+        // it; and `Auto` at a loose tolerance picks `KimGrip` on it.
+        // (`validity::kim_grip`'s first three tests, without short-circuits: the
+        // fourth, e* ≥ 0.01 where μ_ct acts, follows from `auto_kim_grip`'s own e* test
+        // and does not arise for the fast paths, which need μ_ct = 0; the test
+        // `auto_kim_grip_is_the_validity_domain` holds the two together.)
+        let largest = friction.largest();
+        let inside = (largest <= crate::validity::KIM_GRIP_MAX_MU)
+            & (largest * mu_s <= crate::validity::KIM_GRIP_MAX_MU_MU_S)
+            & (largest * mu_ct <= crate::validity::KIM_GRIP_MAX_MU_MU_CT);
         // μ ≤ 1 too: a law built from the enum's variant skips `FrictionLaw::constant`'s
         // check, and the fast path's guard relies on the validated range (the general
         // path guards every impulse).
         let kim_grip_mu = match friction {
-            // Scenes outside `KimGrip`'s validity domain go to the general path, which
-            // refuses them (`validity::kim_grip`): the fast path pays nothing for it.
-            FrictionLaw::Constant(mu)
-                if mu > 0.0
-                    && mu <= 1.0
-                    && mu_ct == 0.0
-                    && mu <= crate::validity::KIM_GRIP_MAX_MU
-                    && mu * mu_s <= crate::validity::KIM_GRIP_MAX_MU_MU_S =>
-            {
-                mu
-            }
+            FrictionLaw::Constant(mu) if mu > 0.0 && mu <= 1.0 && mu_ct == 0.0 && inside => mu,
             _ => 0.0,
         };
         #[cfg(feature = "speed-path")]
@@ -97,20 +103,18 @@ impl Derived {
             // built from the enum's variant skips `FrictionLaw::speed_dependent`'s check
             // (the `collide` fuzz target found a = −0.92 giving an infinite velocity).
             FrictionLaw::SpeedDependent { a, b, c }
-                if a >= 1e-6
-                    && b > 0.0
-                    && c > 0.0
-                    && c <= 100.0
-                    && mu_ct == 0.0
-                    && a + b <= crate::validity::KIM_GRIP_MAX_MU
-                    && (a + b) * mu_s <= crate::validity::KIM_GRIP_MAX_MU_MU_S =>
+                if a >= 1e-6 && b > 0.0 && c > 0.0 && c <= 100.0 && mu_ct == 0.0 && inside =>
             {
                 Some(SpeedLaw { a, b, c })
             }
             _ => None,
         };
         let pressed_k_z = 6.0 - 2.5 * mu_s;
+        let auto_kim_grip = inside
+            & ((largest > 0.0) | (restitution < 1.0))
+            & (restitution >= crate::validity::KIM_GRIP_MIN_RESTITUTION);
         Self {
+            auto_kim_grip,
             #[cfg(feature = "speed-path")]
             kim_grip_speed_law,
             kim_grip_mu,
@@ -135,6 +139,8 @@ impl Params {
 
     /// The one place a `Params` is put together (inputs already validated), so that
     /// [`Derived`] always matches the fields.
+    // Out of line: one copy for every constructor and override (the firmware's flash).
+    #[inline(never)]
     const fn assemble(
         friction: FrictionLaw,
         restitution: f32,

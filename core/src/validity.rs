@@ -185,7 +185,45 @@ pub(crate) const fn outside(reason: Reason, value: f32) -> Error {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{collide, Impact, Model};
+    use crate::{collide, FrictionLaw, Impact, Model};
+
+    /// `Params`' flag for `Auto`'s declared-bound rung (`estimate::select`) is this
+    /// domain, less the frictionless elastic scenes and e* < 0.01, on a grid across
+    /// every edge of it (constant and speed-dependent laws).
+    #[test]
+    fn auto_kim_grip_is_the_validity_domain() {
+        let mut checked = 0;
+        for law in [0.0, 0.05, 0.149, 0.15, 0.151, 0.5]
+            .map(|mu| FrictionLaw::constant(mu).unwrap())
+            .into_iter()
+            .chain(
+                [(0.05, 0.09, 2.0), (0.05, 0.11, 2.0)]
+                    .map(|(a, b, c)| FrictionLaw::speed_dependent(a, b, c).unwrap()),
+            )
+        {
+            for mu_s in [0.0, 0.3, 0.53, 0.54, 1.0] {
+                for mu_ct in [0.0, 1e-3, 0.066, 0.067, 0.1] {
+                    for e in [0.0, 0.005, 0.01, 0.5, 1.0] {
+                        let p = Params::POOL
+                            .with_friction_law(law)
+                            .with_mu_s(mu_s)
+                            .and_then(|p| p.with_cue_table_friction(mu_ct))
+                            .and_then(|p| p.with_restitution(e))
+                            .unwrap();
+                        let mu = law.largest();
+                        let expected = kim_grip(&p).is_ok() && (mu > 0.0 || e < 1.0) && e >= 0.01;
+                        assert_eq!(
+                            p.derived().auto_kim_grip,
+                            expected,
+                            "{law:?} mu_s {mu_s} mu_ct {mu_ct} e {e}"
+                        );
+                        checked += usize::from(expected);
+                    }
+                }
+            }
+        }
+        assert!(checked > 100, "{checked} inside");
+    }
 
     fn refusal(params: &Params, impact: &Impact, model: Model) -> Option<(Tier, Reason, f32)> {
         match collide(params, impact, model) {

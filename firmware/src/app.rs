@@ -189,7 +189,6 @@ mod app {
                     return;
                 }
                 Some(Fed::Header { rate_hz: rate, .. }) => {
-                    defmt::info!("IMU trace: {=u16} Hz", rate);
                     *rate_hz = rate;
                     Item::Start(rate)
                 }

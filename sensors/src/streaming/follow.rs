@@ -270,6 +270,21 @@ impl StreamingEstimator {
         }
     }
 
+    /// Sample `n`, `a` counts, into the follow-through's sums while one is measured;
+    /// `true` on the sample its report is due (the sample after the block end where the
+    /// stop was found).
+    #[inline(always)]
+    pub(super) fn follow_due(&mut self, n: u32, a: i32) -> bool {
+        let k = n.wrapping_sub(self.follow.from);
+        if k < self.follow.span {
+            if self.follow.ready {
+                return true;
+            }
+            self.follow.add(k, a);
+        }
+        false
+    }
+
     /// The end of a step on the sample after the block end where the stop was found:
     /// the report (module docs), built in the caller's return slot.
     #[inline(never)]

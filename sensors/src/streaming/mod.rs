@@ -267,14 +267,8 @@ impl StreamingEstimator {
                     return self.new_impact(n);
                 }
                 #[cfg(feature = "follow-through")]
-                {
-                    let k = n.wrapping_sub(self.follow.from);
-                    if k < self.follow.span {
-                        if self.follow.ready {
-                            return self.follow_report();
-                        }
-                        self.follow.add(k, a);
-                    }
+                if self.follow_due(n, a) {
+                    return self.follow_report();
                 }
                 if self.block.pos == self.plan.block {
                     self.end_block(n);
@@ -348,14 +342,8 @@ impl StreamingEstimator {
         // After the impact and non-finite reports: each ends a measurement, and the
         // costliest samples (impacts) do not pay for it.
         #[cfg(feature = "follow-through")]
-        {
-            let k = n.wrapping_sub(self.follow.from);
-            if k < self.follow.span {
-                if self.follow.ready {
-                    return self.report_follow();
-                }
-                self.follow.add(k, a);
-            }
+        if self.follow_due(n, a) {
+            return self.report_follow();
         }
         if self.block.pos == self.plan.block {
             if self.plan.defer {
