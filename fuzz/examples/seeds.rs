@@ -17,7 +17,7 @@ use cuesight_fuzz::input::Writer;
 use cuesight_fuzz::link::{self, op, Script, StrokePlan};
 use cuesight_fuzz::{collide, link_frame, link_session, shot_scene};
 use cuesight_link::error::{FrameFault, SequenceFault};
-use cuesight_link::{LinkError, UploadFault, SCHEMA_HASH};
+use cuesight_link::{LinkError, Overrides, Request, UploadFault, SCHEMA_HASH};
 
 fn main() {
     let corpus = Path::new(env!("CARGO_MANIFEST_DIR")).join("corpus");
@@ -192,6 +192,16 @@ fn link_session_seeds(dir: &Path) -> usize {
             .any(|e| matches!(e, LinkError::SchemaMismatch { .. }))
             && r.collides == 1
     });
+    // Defaults outside `KimGrip`'s validity domain (μ(0) = 0.05 + 0.49, the default
+    // model's limit 0.15): the session answers `params`, and the target's closing
+    // `collide` (with `Exact`) is answered (this target found its closing check too
+    // strict with the default model).
+    let mut s = base();
+    s.send(&Request::Params(Overrides {
+        mu_b: Some(0.49),
+        ..Overrides::default()
+    }));
+    hostile("defaults-outside-kimgrip", s, |r| r.errors.is_empty());
     let mut s = base();
     s.record(op::RAW, 0, 0, b"{\"version\":{}}\n\x00\x01\x01\x00")
         .record(op::EXAMPLE, collide, 0, &[]);
@@ -656,8 +666,15 @@ fn collide_seeds(dir: &Path) -> usize {
         let bytes = case.bytes();
         let report = collide::run(&bytes);
         assert!(report.valid, "{name}: {report:?}");
+        // Every call answers, refuses as its model's validity domain declares (`Kim`
+        // where the contact grips: the head-on stun), or errs on an input that skipped
+        // validation (the unvalidated law).
         let calls = 2 * (cuesight::Model::ALL.len() + 1);
-        assert_eq!(report.outcomes, calls, "{name}: {report:?}");
+        assert_eq!(
+            report.outcomes + report.refusals + report.rejected,
+            calls,
+            "{name}: {report:?}"
+        );
         println!("collide/{name}: {report:?}");
         seeds.push((name.clone(), bytes));
     }
@@ -673,14 +690,27 @@ fn collide_seeds(dir: &Path) -> usize {
 }
 
 /// Crash inputs of the `collide` target, as `cargo fuzz` wrote them.
-const COLLIDE_REGRESSIONS: [(&str, &[u8]); 1] = [(
-    "unvalidated-infinite-mu-fast-path",
-    &[
-        0x00, 0x06, 0x39, 0x99, 0x99, 0x99, 0x06, 0xbf, 0xfe, 0xff, 0xbf, 0x06, 0x4f, 0x00, 0x00,
-        0x6d, 0x06, 0x51, 0x99, 0x77, 0x77, 0x77, 0x77, 0x77, 0x77, 0x77, 0x02, 0x77, 0x83, 0x41,
-        0x83, 0x54, 0xc0, 0x7f, 0xff, 0xff, 0x99, 0x59, 0xc4, 0x99, 0x9e, 0x06,
-    ],
-)];
+const COLLIDE_REGRESSIONS: [(&str, &[u8]); 2] = [
+    (
+        "unvalidated-infinite-mu-fast-path",
+        &[
+            0x00, 0x06, 0x39, 0x99, 0x99, 0x99, 0x06, 0xbf, 0xfe, 0xff, 0xbf, 0x06, 0x4f, 0x00,
+            0x00, 0x6d, 0x06, 0x51, 0x99, 0x77, 0x77, 0x77, 0x77, 0x77, 0x77, 0x77, 0x02, 0x77,
+            0x83, 0x41, 0x83, 0x54, 0xc0, 0x7f, 0xff, 0xff, 0x99, 0x59, 0xc4, 0x99, 0x9e, 0x06,
+        ],
+    ),
+    (
+        "regression-speed-path-unvalidated-law",
+        &[
+            0x00, 0x06, 0x39, 0x99, 0x99, 0x02, 0x01, 0xab, 0x06, 0xaa, 0xaa, 0x7e, 0x02, 0x06,
+            0x33, 0x33, 0x33, 0x33, 0x06, 0xaa, 0xaa, 0xaa, 0xaa, 0x06, 0x00, 0x00, 0x00, 0x80,
+            0x06, 0x99, 0x99, 0x99, 0x99, 0x06, 0x00, 0x00, 0x00, 0x2a, 0x02, 0x06, 0x33, 0x33,
+            0x33, 0x33, 0x06, 0x7e, 0xaa, 0xaa, 0xaa, 0xaa, 0x06, 0x00, 0x00, 0x00, 0x80, 0x06,
+            0x99, 0x99, 0x99, 0x99, 0x06, 0x00, 0x00, 0x00, 0x80, 0x11, 0xb0, 0xee, 0xd6, 0x3f,
+            0x69, 0xd8, 0x3f, 0x06, 0x2a, 0x5c, 0x8f, 0x02,
+        ],
+    ),
+];
 
 /// The README's shot: 2 m/s, cut 30°, 40 rad/s of topspin, μ = 0.06, pool balls.
 fn readme_collision() -> Collision {

@@ -34,8 +34,12 @@ pub struct Report {
     /// Parameters and impact were accepted.
     pub valid: bool,
     /// Calls that returned an outcome (two precisions for each of [`Model::ALL`] and
-    /// `Auto`).
+    /// `Auto`)...
     pub outcomes: usize,
+    /// ...calls refused outside the model's declared validity domain...
+    pub refusals: usize,
+    /// ...and calls that returned an error for an input that skipped validation.
+    pub rejected: usize,
 }
 
 /// Decodes `data` and checks every model on it (see the module docs).
@@ -91,6 +95,8 @@ pub fn run(data: &[u8]) -> Report {
                         !validated || bad_tolerance || declared,
                         "{what}: {error} for valid input {params:?}, {impact:?}"
                     );
+                    report.refusals += usize::from(declared);
+                    report.rejected += usize::from(!validated && !declared);
                 }
             }
         }

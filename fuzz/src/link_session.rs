@@ -24,7 +24,7 @@ use cuesight_device::{Control, Identity, Session};
 use cuesight_link::error::{FrameFault, SequenceFault};
 use cuesight_link::frame::{self, FrameReader, Received, MAX_FRAME};
 use cuesight_link::{
-    Collide, Empty, LinkError, Request, Response, StrokeChunk, SCHEMA_HASH, UNPROMPTED,
+    Collide, Empty, LinkError, ModelName, Request, Response, StrokeChunk, SCHEMA_HASH, UNPROMPTED,
 };
 
 use crate::link::{self, Expected};
@@ -99,7 +99,15 @@ pub fn run(data: &[u8]) -> Report {
         matches!(&answers[..], [Response::Version(v)] if v.schema == SCHEMA_HASH),
         "after the script, version got {answers:?}"
     );
-    let collide = request_wire(0x4322, &Request::Collide(Collide::new(2.0, 30.0)));
+    // With `Exact`, which answers every valid input: the script may have set defaults
+    // outside another model's validity domain (e.g. `params` with mu_b 0.49 makes μ(0)
+    // 0.54, past `KimGrip`'s 0.15, the default model), where the session's answer is a
+    // defined refusal, not a wedged session (found by this target in CI).
+    let probe = Collide {
+        model: Some(ModelName::Exact),
+        ..Collide::new(2.0, 30.0)
+    };
+    let collide = request_wire(0x4322, &Request::Collide(probe));
     let answers = device.feed(&collide);
     assert!(
         matches!(&answers[..], [Response::Collide(_)]),
