@@ -86,6 +86,8 @@ impl Impact {
 
     /// Natural roll for the given velocity: `ω = ẑ × v / R` (physics-notes §1), i.e.
     /// no slip at the table contact. `radius` in metres.
+    // Out of line: the firmware's boot self-test and `collide` both call it (flash).
+    #[inline(never)]
     pub fn rolling(velocity: [f32; 2], radius: f32) -> Result<Self> {
         let radius = check(Field::Radius, radius, 0.001, 1.0, false)?;
         Self::from_velocity(velocity, [-velocity[1] / radius, velocity[0] / radius, 0.0])

@@ -252,6 +252,28 @@ impl Params {
         ))
     }
 
+    /// Replace the friction law (already validated by its constructor), e*, μ_s, R and
+    /// M (each validated, in that order; μ_ct kept): [`Self::with_friction_law`],
+    /// [`Self::with_restitution`], [`Self::with_mu_s`] and [`Self::with_ball`] in one,
+    /// with the same first error, assembled once (the link's overrides: flash).
+    pub fn with_contact(
+        self,
+        friction: FrictionLaw,
+        restitution: f32,
+        mu_s: f32,
+        radius: f32,
+        mass: f32,
+    ) -> Result<Self> {
+        Ok(Self::assemble(
+            friction,
+            check(Field::Restitution, restitution, 0.0, 1.0, false)?,
+            check(Field::TableFriction, mu_s, 0.0, 1.0, false)?,
+            self.cue_table_friction,
+            check(Field::Radius, radius, 0.001, 1.0, false)?,
+            check(Field::Mass, mass, 0.001, 100.0, false)?,
+        ))
+    }
+
     /// Ball–ball friction coefficient μ: the constant value, or for a speed-dependent
     /// law its value at zero slip speed (the stick limit).
     pub fn mu(&self) -> f32 {
@@ -298,6 +320,27 @@ impl Default for Params {
 mod tests {
     use super::*;
     use crate::Error;
+
+    #[test]
+    fn with_contact_is_the_chained_setters() {
+        let base = Params::POOL.with_cue_table_friction(0.2).unwrap();
+        let law = FrictionLaw::MARLOW;
+        let chained = |e: f32, mu_s: f32, r: f32, m: f32| {
+            base.with_friction_law(law)
+                .with_restitution(e)
+                .and_then(|p| p.with_mu_s(mu_s))
+                .and_then(|p| p.with_ball(r, m))
+        };
+        for (e, mu_s, r, m) in [
+            (0.9, 0.2, 0.03, 0.2),
+            (1.5, 2.0, 0.0, -1.0),
+            (0.9, f32::NAN, 2.0, 0.2),
+            (0.9, 0.2, 0.0005, f32::INFINITY),
+            (0.9, 0.2, 0.03, 200.0),
+        ] {
+            assert_eq!(base.with_contact(law, e, mu_s, r, m), chained(e, mu_s, r, m));
+        }
+    }
 
     #[test]
     fn pool_defaults_validate() {

@@ -157,7 +157,7 @@ impl<U: BorrowMut<Upload>> Session<U> {
         if let Err(fault) = self.check_sequence(seq, restarts) {
             return (seq, Err(LinkError::Sequence(fault)));
         }
-        let result = request.and_then(|request| self.dispatch(&request, seq, out));
+        let result = request.and_then(|mut request| self.dispatch(&mut request, seq, out));
         (seq, result)
     }
 
@@ -182,9 +182,10 @@ impl<U: BorrowMut<Upload>> Session<U> {
         }
     }
 
-    /// Runs `request` and encodes its answer into `out`.
+    /// Runs `request` and encodes its answer into `out` (a `plan` is moved out of it:
+    /// a clone costs flash).
     #[inline(never)]
-    fn dispatch(&mut self, request: &Request, seq: u16, out: &mut [u8]) -> Answered {
+    fn dispatch(&mut self, request: &mut Request, seq: u16, out: &mut [u8]) -> Answered {
         let name = request.name();
         let mut control = Control::Continue;
         let len = match request {
@@ -205,7 +206,7 @@ impl<U: BorrowMut<Upload>> Session<U> {
             }
             Request::Stroke(chunk) => self.stroke(chunk, seq, out)?,
             Request::Shot(shot) => self.shot(shot, seq, out)?,
-            Request::Plan(plan) => self.plan(plan.as_ref(), seq, out)?,
+            Request::Plan(plan) => self.plan(plan, seq, out)?,
             Request::Shutdown(_) => {
                 control = Control::Shutdown;
                 let counts = ShutdownAnswer {
@@ -255,19 +256,24 @@ impl<U: BorrowMut<Upload>> Session<U> {
     #[inline(never)]
     fn plan(
         &mut self,
-        plan: Option<&ShotRequest>,
+        plan: &mut Option<ShotRequest>,
         seq: u16,
         out: &mut [u8],
     ) -> Result<usize, LinkError> {
         if let Some(plan) = plan {
             crate::guide::check(plan, &self.defaults)?;
         }
-        self.plan = plan.cloned();
+        self.plan = plan.take();
         send(seq, &Response::Plan(self.plan.is_some()), out)
     }
 
     #[cfg(not(feature = "shot"))]
-    fn plan(&mut self, _: Option<&ShotRequest>, _: u16, _: &mut [u8]) -> Result<usize, LinkError> {
+    fn plan(
+        &mut self,
+        _: &mut Option<ShotRequest>,
+        _: u16,
+        _: &mut [u8],
+    ) -> Result<usize, LinkError> {
         Err(LinkError::Unsupported(Unsupported::Shot))
     }
 

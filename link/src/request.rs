@@ -134,14 +134,13 @@ impl Overrides {
         } else {
             FrictionLaw::speed_dependent(a, b, c)?
         };
-        let params = p
-            .with_friction_law(law)
-            .with_restitution(self.restitution.unwrap_or(p.restitution()))?
-            .with_mu_s(self.mu_s.unwrap_or(p.mu_s()))?
-            .with_ball(
-                self.radius.unwrap_or(p.radius()),
-                self.mass.unwrap_or(p.mass()),
-            )?;
+        let params = p.with_contact(
+            law,
+            self.restitution.unwrap_or(p.restitution()),
+            self.mu_s.unwrap_or(p.mu_s()),
+            self.radius.unwrap_or(p.radius()),
+            self.mass.unwrap_or(p.mass()),
+        )?;
         Ok(Defaults {
             params,
             model: self.model.unwrap_or(defaults.model),
