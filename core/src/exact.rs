@@ -116,9 +116,9 @@ struct Split<R> {
     target: Option<R>,
     /// Whether a substep's friction direction was turned towards the stick impulse.
     blended: bool,
-    /// Where the impact ends: the substep's length, the fraction of it where
-    /// compression ended (0 if before it), and its full result.
-    end: Option<(R, R, State<R>, bool)>,
+    /// Where the impact ends: the substep's length and the fraction of it where
+    /// compression ended (0 if before it).
+    end: Option<(R, R)>,
 }
 
 struct Model<R> {
@@ -257,32 +257,17 @@ impl<R: Real> Model<R> {
         (Self::solve_slip(compliance, s.slip_y, s.slip_z), compliance)
     }
 
-    /// Advance one step of normal impulse `dp` as `substeps` equal substeps from `s`
-    /// (`stuck`, the work so far `work`, the end's `target` if known), locating the end
-    /// of compression (and with it the target) and stopping at the substep the impact
-    /// ends in.
-    fn advance_split(
-        &self,
-        s: &State<R>,
-        (dp, substeps): (R, u32),
-        stuck: bool,
-        (work, target): (R, Option<R>),
-    ) -> Split<R> {
+    /// Advance `split` (its state, work so far and the end's target if known) by one
+    /// step of normal impulse `dp` as `substeps` equal substeps, locating the end of
+    /// compression (and with it the target) and stopping at the substep the impact ends
+    /// in. In place: the firmware's stack holds one `Split` per level, not two.
+    fn advance_split(&self, split: &mut Split<R>, dp: R, substeps: u32) {
         let (zero, half) = (R::ZERO, R::of(0.5));
         let h = dp / R::of(substeps as f32);
-        let mut split = Split {
-            state: *s,
-            stuck,
-            work,
-            target,
-            blended: false,
-            end: None,
-        };
         for _ in 0..substeps {
-            let state = split.state;
-            let (next, next_stuck, blended) = self.advance(&state, h, split.stuck);
+            let (next, next_stuck, blended) = self.advance(&split.state, h, split.stuck);
             split.blended = split.blended || blended;
-            let (v0, v1) = (state.normal_velocity, next.normal_velocity);
+            let (v0, v1) = (split.state.normal_velocity, next.normal_velocity);
             let mut from = zero;
             if split.target.is_none() && v1 >= zero {
                 // The end of compression, v_n = 0, linear in the substep: inside one of
@@ -297,14 +282,13 @@ impl<R: Real> Model<R> {
             }
             let next_work = split.work + half * (v0 + v1) * h;
             if split.target.is_some_and(|target| next_work >= target) {
-                split.end = Some((h, from, next, next_stuck));
-                return split;
+                split.end = Some((h, from));
+                return;
             }
             split.state = next;
             split.stuck = next_stuck;
             split.work = next_work;
         }
-        split
     }
 
     /// Substeps the step from `s` (`stuck`) to `split` asks for (module docs): the most
@@ -488,19 +472,22 @@ fn table_impulse<R: Real>(limit: R, start: (R, R), end: (R, R), gain: R) -> (R, 
     (-limit * along_x / length, -limit * along_y / length)
 }
 
-/// The state at the impact's end inside the substep of `dp` from `split`'s state (whose
-/// full result is `full`), where the work reaches `target`; `from` the fraction of the
-/// substep where compression ended (0 if before it).
+/// The state at the impact's end inside the substep of `dp` from `split`'s state, where
+/// the work reaches `target`; `from` the fraction of the substep where compression ended
+/// (0 if before it).
 fn locate_end<R: Real>(
     model: &Model<R>,
     split: &Split<R>,
     (dp, from): (R, R),
-    full: (State<R>, bool),
     target: R,
     approach: R,
 ) -> (State<R>, bool) {
     let zero = R::ZERO;
     let (state, stuck, work) = (&split.state, split.stuck, split.work);
+    let full = {
+        let (next, next_stuck, _) = model.advance(state, dp, stuck);
+        (next, next_stuck)
+    };
     let (v0, v1) = (state.normal_velocity, full.0.normal_velocity);
     // W(λ) = work + v0 λ dp + (v1 − v0) λ² dp / 2 = target, λ ∈ [from, 1].
     let slope = v1 - v0;
@@ -597,7 +584,7 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
     };
     let (u, w, radius) = (impact.velocity(), impact.spin(), R::of(params.radius()));
     let zero = R::ZERO;
-    let mut state = State {
+    let state = State {
         slip_y,
         slip_z,
         normal_velocity: -approach,
@@ -616,10 +603,17 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
         cue_table_y: zero,
     };
     let frictionless = law.is_frictionless();
-    let mut stuck = frictionless || (slip_y == zero && slip_z == zero);
+    let stuck = frictionless || (slip_y == zero && slip_z == zero);
     let mut ever_stuck = stuck && !frictionless;
     let dp = R::of(0.5) * (R::ONE + restitution) * approach / R::of(STEPS as f32);
-    let (mut work, mut target) = (zero, None);
+    let mut current = Split {
+        state,
+        stuck,
+        work: zero,
+        target: None,
+        blended: false,
+        end: None,
+    };
     // Substeps of the coming step, from the turn of the last (module docs). A step is
     // taken again with more where its slip stuck or was blended towards the stick
     // impulse (up to MAX_SUBSTEPS), or where its turn asks for more than twice its
@@ -627,30 +621,26 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
     let mut substeps = 1;
     // At most 4 × STEPS steps: v_n grows by at least (2 − μ_s) dp per step.
     for _ in 0..4 * STEPS {
-        let mut split = model.advance_split(&state, (dp, substeps), stuck, (work, target));
-        let needed = Model::substeps_needed(&state, stuck, &split, dp);
-        let event = split.blended || split.stuck != stuck;
+        let start = current;
+        model.advance_split(&mut current, dp, substeps);
+        let needed = Model::substeps_needed(&start.state, start.stuck, &current, dp);
+        let event = current.blended || current.stuck != start.stuck;
         if needed > substeps && (event || needed > 2 * substeps) {
             substeps = needed;
-            split = model.advance_split(&state, (dp, substeps), stuck, (work, target));
+            current = start;
+            model.advance_split(&mut current, dp, substeps);
         }
-        ever_stuck = ever_stuck || split.stuck;
-        if let (Some(end), Some(target)) = (split.end, split.target) {
-            let (last, last_stuck) = locate_end(
-                &model,
-                &split,
-                (end.0, end.1),
-                (end.2, end.3),
-                target,
-                approach,
-            );
-            state = last;
+        ever_stuck = ever_stuck || current.stuck;
+        if let (Some(end), Some(target)) = (current.end, current.target) {
+            let (last, last_stuck) = locate_end(&model, &current, end, target, approach);
+            current.state = last;
             ever_stuck = ever_stuck || last_stuck;
             break;
         }
-        substeps = if split.stuck { 1 } else { needed };
-        (state, stuck, work, target) = (split.state, split.stuck, split.work, split.target);
+        substeps = if current.stuck { 1 } else { needed };
+        current.blended = false;
     }
+    let state = current.state;
     let regime = if frictionless {
         Regime::Frictionless
     } else if ever_stuck {

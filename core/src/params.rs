@@ -338,7 +338,10 @@ mod tests {
             (0.9, 0.2, 0.0005, f32::INFINITY),
             (0.9, 0.2, 0.03, 200.0),
         ] {
-            assert_eq!(base.with_contact(law, e, mu_s, r, m), chained(e, mu_s, r, m));
+            assert_eq!(
+                base.with_contact(law, e, mu_s, r, m),
+                chained(e, mu_s, r, m)
+            );
         }
     }
 
