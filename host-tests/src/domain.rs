@@ -248,6 +248,20 @@ pub struct Scored {
     /// The tier `Auto` at [`AUTO_TOLERANCE`] picks, and its a-priori estimate of that
     /// tier's error (`cuesight::select_model`).
     pub auto_pick: (Model, f32),
+    /// The f32 floor ([`f32_floor`]): no f32 `Outcome` can be closer to the reference.
+    pub f32_floor: f64,
+}
+
+/// The error (`max(|Δv|, R|Δω|)/U`, worst of the two balls) of the reference's answer
+/// rounded to f32: an `Outcome` holds f32, so no model can be closer than this. It is
+/// large where the spin dwarfs the speed: at 0.01 m/s with 10⁴ rad/s, `R|ω|/U` ≈ 3·10⁴
+/// and one f32 rounding of ω is ~1e-3 of U.
+pub fn f32_floor(scene: &Scene, reference: &ReferenceOutcome) -> f64 {
+    let rounding = |v: glam::DVec3| (v - v.as_vec3().as_dvec3()).length();
+    let (cue, object) = (&reference.cue_ball, &reference.object_ball);
+    let velocity = rounding(cue.velocity).max(rounding(object.velocity));
+    let spin = rounding(cue.spin).max(rounding(object.spin));
+    velocity.max(scene.radius as f64 * spin) / scene.speed()
 }
 
 impl Scored {
@@ -268,6 +282,7 @@ pub fn score(scene: &DomainScene) -> Scored {
         returned: results.map(Result::err),
         object_speed: r.object_ball.velocity.length() / scene.scene.speed(),
         auto_pick: cuesight::select_model(&params, &impact, AUTO_TOLERANCE as f32),
+        f32_floor: f32_floor(&scene.scene, &r),
     }
 }
 
