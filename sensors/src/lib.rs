@@ -66,8 +66,8 @@ pub use lsm6dsox::{
 };
 pub use ring::RingBuffer;
 pub use streaming::{
-    StreamConfig, StreamConfigError, StreamEvent, StreamFault, StreamPlan, StreamStroke,
-    StreamingEstimator, Wobble,
+    CheckedConfig, StreamConfig, StreamConfigError, StreamEvent, StreamFault, StreamPlan,
+    StreamStroke, StreamingEstimator, Wobble,
 };
 pub use stroke::{
     estimate, estimate_raw, estimate_raw_with_pitch, estimate_with_pitch, ConfigField,

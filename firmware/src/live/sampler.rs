@@ -8,7 +8,8 @@ use cuesight_link::live::{SensorFault, TraceEnd};
 use cuesight_sensors::emulated::{BusError, EmulatedLsm6dsox, Sa0, SensorLatch};
 use cuesight_sensors::lsm6dsox::{Error as ImuError, Interface, ADDRESS_SA0_LOW};
 use cuesight_sensors::{
-    Lsm6dsox, StreamConfig, StreamConfigError, StreamEvent, StreamPlan, StreamingEstimator, Wobble,
+    CheckedConfig, Lsm6dsox, StreamConfig, StreamConfigError, StreamEvent, StreamPlan,
+    StreamingEstimator, Wobble,
 };
 
 /// Why sampling could not start (`E`: the bus's error).
@@ -153,6 +154,16 @@ const TRACE_PLANS: [(u16, Result<StreamPlan, StreamConfigError>); 2] = [
     (6667, StreamPlan::new(&live_config(6667.0))),
 ];
 
+/// The estimator's settings for a real part ([`live_config`]), validated at compile
+/// time but for the rate, which is the part's trimmed output data rate (known after its
+/// `init`): [`CheckedConfig::plan_at`] checks that alone, so the nRF52840 image carries
+/// no code for the other checks.
+const PART_CONFIG: CheckedConfig =
+    match CheckedConfig::new(&live_config(cuesight_sensors::lsm6dsox::NOMINAL_ODR_HZ)) {
+        Ok(config) => config,
+        Err(_) => panic!("the live estimator's settings are invalid"),
+    };
+
 impl<P> Sampler<P> {
     /// An estimator on `plan` beside `part`, into `slot`.
     #[inline(always)]
@@ -258,7 +269,9 @@ impl<B: Interface> Sampler<Lsm6dsox<B>> {
         part.init().map_err(StartError::Imu)?;
         part.enable_accel_data_ready_int1_pulsed()
             .map_err(StartError::Imu)?;
-        let plan = StreamPlan::new(&live_config(part.odr_hz()));
+        // `StreamPlan::new(&live_config(part.odr_hz()))`, its rate-independent checks
+        // made at compile time.
+        let plan = PART_CONFIG.plan_at(part.odr_hz());
         Self::fill(slot, part, plan)
     }
 

@@ -135,6 +135,35 @@ impl StreamPlan {
     }
 }
 
+/// A [`StreamConfig`] whose settings were all validated ([`StreamPlan::new`]), for a
+/// device whose sample rate is known only at run time (a part's trimmed output data
+/// rate): [`Self::plan_at`] checks the rate alone. In a `const` item, every other check
+/// is made at compile time, and the image carries none of their code.
+#[derive(Clone, Copy, Debug)]
+pub struct CheckedConfig(StreamConfig);
+
+impl CheckedConfig {
+    /// Validates `config` (the checks of [`StreamPlan::new`]).
+    pub const fn new(config: &StreamConfig) -> Result<Self, StreamConfigError> {
+        match check(config) {
+            Ok(()) => Ok(Self(*config)),
+            Err(e) => Err(e),
+        }
+    }
+
+    /// [`StreamPlan::new`] of the config with its `stroke.sample_rate_hz` replaced by
+    /// `rate_hz`: the same plan, or the same [`StreamConfigError::SampleRate`]. No other
+    /// check depends on the rate, and they all held for [`Self::new`].
+    pub const fn plan_at(&self, rate_hz: f32) -> Result<StreamPlan, StreamConfigError> {
+        let mut config = self.0;
+        config.stroke.sample_rate_hz = rate_hz;
+        if !(rate_hz >= 500.0 && rate_hz <= MAX_STREAM_RATE_HZ) {
+            return Err(StreamConfigError::SampleRate);
+        }
+        Ok(StreamPlan(Plan::derive(&config)))
+    }
+}
+
 /// Sample counts and unit conversions derived from a validated [`StreamConfig`]. Every
 /// acceleration is in raw counts (`m/s² / |accel_scale|`), forward positive.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -239,43 +268,58 @@ const fn magnitude(x: f32) -> f32 {
     }
 }
 
+/// Validate `config` (the windowed estimator's checks, then the stream's own).
+const fn check(config: &StreamConfig) -> Result<(), StreamConfigError> {
+    let s = &config.stroke;
+    let rate = s.sample_rate_hz;
+    use ConfigField as F;
+    use StreamConfigError as E;
+    // Every check is `low ≤ x ≤ high`, false for NaN, in the order the errors are
+    // reported: a table and one loop are a third of the code of fifteen tests. "> 0
+    // and finite" is `[TINY, MAX]`; "above the impact threshold" `≥` the next float.
+    let above_threshold = f32::from_bits(s.impact_threshold.to_bits().wrapping_add(1));
+    #[rustfmt::skip]
+    let checks: [(f32, f32, f32, StreamConfigError); 15] = [
+        (rate, 500.0, MAX_STREAM_RATE_HZ, E::SampleRate),
+        (s.impact_threshold, TINY, f32::MAX, E::Stroke(F::ImpactThreshold)),
+        (s.onset_drop, TINY, f32::MAX, E::Stroke(F::OnsetDrop)),
+        (s.rest_noise_limit, TINY, f32::MAX, E::Stroke(F::RestNoiseLimit)),
+        (s.rest_level_tolerance, TINY, f32::MAX, E::Stroke(F::RestLevelTolerance)),
+        (s.motion_floor, TINY, f32::MAX, E::Stroke(F::MotionFloor)),
+        (s.min_rest, TINY, 10.0, E::Stroke(F::MinRest)),
+        (s.full_scale, above_threshold, f32::INFINITY, E::Stroke(F::FullScale)),
+        (s.cue_elevation, -1.2, 1.2, E::Stroke(F::CueElevation)),
+        (magnitude(config.accel_scale), TINY, f32::MAX, E::AccelScale),
+        (magnitude(config.pitch_scale), TINY, f32::MAX, E::PitchScale),
+        (config.trusted_rest, s.min_rest, 60.0, E::TrustedRest),
+        (config.max_stroke, TINY, 60.0, E::MaxStroke),
+        (config.double_hit_window, TINY, 1.0, E::DoubleHitWindow),
+        (config.min_speed, 0.0, f32::MAX, E::MinSpeed),
+    ];
+    let mut i = 0;
+    while i < checks.len() {
+        let (x, low, high, error) = checks[i];
+        if !(x >= low && x <= high) {
+            return Err(error);
+        }
+        i += 1;
+    }
+    Ok(())
+}
+
 impl Plan {
-    /// Validate `config` (the windowed estimator's checks, then the stream's own).
+    /// Validate `config` ([`check`]) and derive its plan.
     pub const fn new(config: &StreamConfig) -> Result<Plan, StreamConfigError> {
+        match check(config) {
+            Ok(()) => Ok(Self::derive(config)),
+            Err(e) => Err(e),
+        }
+    }
+
+    /// The plan of a valid `config` ([`check`]).
+    const fn derive(config: &StreamConfig) -> Plan {
         let s = &config.stroke;
         let rate = s.sample_rate_hz;
-        use ConfigField as F;
-        use StreamConfigError as E;
-        // Every check is `low ≤ x ≤ high`, false for NaN, in the order the errors are
-        // reported: a table and one loop are a third of the code of fifteen tests. "> 0
-        // and finite" is `[TINY, MAX]`; "above the impact threshold" `≥` the next float.
-        let above_threshold = f32::from_bits(s.impact_threshold.to_bits().wrapping_add(1));
-        #[rustfmt::skip]
-        let checks: [(f32, f32, f32, StreamConfigError); 15] = [
-            (rate, 500.0, MAX_STREAM_RATE_HZ, E::SampleRate),
-            (s.impact_threshold, TINY, f32::MAX, E::Stroke(F::ImpactThreshold)),
-            (s.onset_drop, TINY, f32::MAX, E::Stroke(F::OnsetDrop)),
-            (s.rest_noise_limit, TINY, f32::MAX, E::Stroke(F::RestNoiseLimit)),
-            (s.rest_level_tolerance, TINY, f32::MAX, E::Stroke(F::RestLevelTolerance)),
-            (s.motion_floor, TINY, f32::MAX, E::Stroke(F::MotionFloor)),
-            (s.min_rest, TINY, 10.0, E::Stroke(F::MinRest)),
-            (s.full_scale, above_threshold, f32::INFINITY, E::Stroke(F::FullScale)),
-            (s.cue_elevation, -1.2, 1.2, E::Stroke(F::CueElevation)),
-            (magnitude(config.accel_scale), TINY, f32::MAX, E::AccelScale),
-            (magnitude(config.pitch_scale), TINY, f32::MAX, E::PitchScale),
-            (config.trusted_rest, s.min_rest, 60.0, E::TrustedRest),
-            (config.max_stroke, TINY, 60.0, E::MaxStroke),
-            (config.double_hit_window, TINY, 1.0, E::DoubleHitWindow),
-            (config.min_speed, 0.0, f32::MAX, E::MinSpeed),
-        ];
-        let mut i = 0;
-        while i < checks.len() {
-            let (x, low, high, error) = checks[i];
-            if !(x >= low && x <= high) {
-                return Err(error);
-            }
-            i += 1;
-        }
         let scale = magnitude(config.accel_scale);
         let pitch_scale = magnitude(config.pitch_scale);
         // The windowed estimator's sample counts (`stroke.rs`, `StrokeConfig::validate`).
@@ -311,7 +355,7 @@ impl Plan {
         };
         let knock = ceil(-(s.impact_threshold / scale));
         let normal = if knock > 1 - rail { knock } else { 1 - rail };
-        Ok(Plan {
+        Plan {
             dt: 1.0 / rate,
             scale,
             inv_scale: 1.0 / scale,
@@ -352,6 +396,6 @@ impl Plan {
                 0
             },
             defer: config.defer_reports,
-        })
+        }
     }
 }

@@ -76,7 +76,7 @@ mod rest;
 mod tests;
 mod wobble;
 
-pub use config::{StreamConfig, StreamConfigError, StreamPlan, MAX_STREAM_RATE_HZ};
+pub use config::{CheckedConfig, StreamConfig, StreamConfigError, StreamPlan, MAX_STREAM_RATE_HZ};
 pub use event::{StreamEvent, StreamFault, StreamStroke};
 pub use wobble::Wobble;
 

@@ -325,3 +325,47 @@ fn the_validation_table_is_the_fifteen_tests() {
     }
     assert_eq!(checked, 15 * 25 * 2 * 2);
 }
+
+/// `CheckedConfig::plan_at` is `StreamPlan::new` at the rate: the same plan for every
+/// rate the nRF52840's trim gives and around the accepted range's edges, the same error
+/// outside it (NaN too), and `CheckedConfig::new` refuses what `StreamPlan::new` does.
+#[test]
+fn a_checked_config_plans_at_any_rate_as_the_plan_does() {
+    use super::{CheckedConfig, StreamPlan};
+    let mut base = StreamConfig::new(FS);
+    base.defer_reports = true;
+    #[cfg(feature = "follow-through")]
+    {
+        base.follow_through = true;
+    }
+    let checked = CheckedConfig::new(&base).unwrap();
+    let trims = (-128i32..=127).map(|t| crate::lsm6dsox::trimmed_odr_hz(t as i8 as u8));
+    let edges = [
+        f32::NAN,
+        f32::NEG_INFINITY,
+        -1.0,
+        0.0,
+        499.99997,
+        500.0,
+        3333.0,
+        6667.0,
+        10_000.0,
+        10_000.001,
+        f32::MAX,
+        f32::INFINITY,
+    ];
+    for rate in trims.chain(edges) {
+        let mut config = base;
+        config.stroke.sample_rate_hz = rate;
+        let expected = StreamPlan::new(&config);
+        let planned = checked.plan_at(rate);
+        match (planned, expected) {
+            (Ok(a), Ok(b)) => assert_eq!(a.0, b.0, "rate {rate:e}"),
+            (a, b) => assert_eq!(a.err(), b.err(), "rate {rate:e}"),
+        }
+    }
+    let mut bad = base;
+    bad.max_stroke = 61.0;
+    assert_eq!(CheckedConfig::new(&bad).err(), StreamPlan::new(&bad).err());
+    assert!(CheckedConfig::new(&bad).is_err());
+}
