@@ -34,7 +34,10 @@ pub(crate) mod accurate;
 pub(crate) mod fast;
 
 /// Square root of `x` (`x ≥ 0`; returns NaN for negative input like IEEE `sqrt`).
-#[inline(always)]
+/// Out of line with the `compact-sqrt` feature (the firmware's: smaller than the
+/// inlined block at every call), else inlined.
+#[cfg_attr(feature = "compact-sqrt", inline(never))]
+#[cfg_attr(not(feature = "compact-sqrt"), inline(always))]
 pub fn sqrt(x: f32) -> f32 {
     #[cfg(all(
         target_arch = "arm",

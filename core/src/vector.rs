@@ -50,7 +50,9 @@ impl Vec3 {
         )
     }
 
-    /// Euclidean length (one square root through the math shim).
+    /// Euclidean length (one square root through the math shim). Out of line with the
+    /// `compact-sqrt` feature, as the root is (60 B of a firmware image).
+    #[cfg_attr(feature = "compact-sqrt", inline(never))]
     pub fn length(self) -> f32 {
         crate::math::sqrt(self.dot(self))
     }
