@@ -338,7 +338,9 @@ impl<U: BorrowMut<Upload>> Session<U> {
 }
 
 /// `text` as a short name; empty if it does not fit (the names are the firmware's own
-/// constants, well within [`cuesight_link::response::NAME_LEN`]).
+/// constants, well within [`cuesight_link::response::NAME_LEN`]). Out of line: the
+/// version answer's two names share one copy (36 B of flash).
+#[inline(never)]
 fn short_name<const N: usize>(text: &str) -> heapless::String<N> {
     heapless::String::try_from(text).unwrap_or_default()
 }
