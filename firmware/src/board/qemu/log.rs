@@ -42,6 +42,7 @@ static SHARED: Shared = Shared {
     }),
 };
 
+#[inline(never)]
 fn emit(stream: &mut Option<HostStream>, bytes: &[u8]) {
     if let Some(stream) = stream {
         // Nothing to do about a host that refuses the log.
