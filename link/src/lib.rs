@@ -37,6 +37,7 @@ pub mod names;
 pub mod request;
 pub mod response;
 pub mod shot;
+mod wire;
 
 pub use error::{LinkError, UploadFault};
 pub use frame::{next_seq, UNPROMPTED};

@@ -39,6 +39,7 @@ pub struct LiveStroke {
     /// The first contact sample (0-based, counted from the trace's start).
     pub impact_sample: u64,
     /// Cue speed just before the tip contact (m/s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub cue_speed: f32,
     /// Instructions from the start of the interrupt that delivered the sample on which
     /// the impact was detected to the guidance computed and this report composed
@@ -55,22 +56,29 @@ pub struct LiveStroke {
 #[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub struct StrokeMetrics {
     /// How far the cue went back from the address (m).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub backswing_length: f32,
     /// Backswing duration (s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub backswing_time: f32,
     /// Pause at the back (s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub pause: f32,
     /// Forward stroke, from the pause to the contact (s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub forward_time: f32,
     /// Backswing time over forward time; `None` without a forward time.
     pub tempo: Option<f32>,
     /// Acceleration just before the contact (m/s²): positive, still accelerating.
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub accel_at_impact: f32,
     /// Cue elevation change from the address to the contact (degrees, butt up
     /// positive), from the gyro.
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub elevation_change_deg: f32,
     /// Side-to-side wobble: the RMS deviation of the yaw rate from its mean while the
     /// cue moved, from the start of the stroke's motion to the contact (°/s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub wobble_dps: f32,
 }
 
@@ -81,8 +89,10 @@ pub struct FollowThrough {
     /// The stroke it follows ([`LiveStroke::stroke`]).
     pub stroke: u32,
     /// Forward travel of the cue from the tip contact until it stopped (m).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub length: f32,
     /// Time from the tip contact until the cue stopped (s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub time: f32,
 }
 

@@ -68,26 +68,35 @@ pub struct VersionAnswer {
 #[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub struct InputEcho {
     /// Cue-ball speed before impact `U` (m/s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub speed: f32,
     /// Cut angle φ (degrees).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub cut_deg: f32,
     /// Cue-ball spin before impact (rad/s); for `roll`, the natural roll derived.
     pub spin: [f32; 3],
     /// Whether `spin` is the natural roll.
     pub roll: bool,
     /// Ball–ball friction μ (a speed-dependent law's high-speed limit `a`).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub mu: f32,
     /// Amplitude `b` of `μ(v) = a + b·exp(−c·v)`; 0 for constant μ.
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub mu_b: f32,
     /// Decay rate `c` (s/m); 0 for constant μ.
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub mu_c: f32,
     /// Energetic restitution e*.
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub restitution: f32,
     /// Object-ball/table friction μ_s.
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub mu_s: f32,
     /// Ball radius R (m).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub radius: f32,
     /// Ball mass M (kg).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub mass: f32,
 }
 
@@ -143,10 +152,12 @@ impl From<&BallState> for BallAnswer {
 #[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub struct ImpulsesAnswer {
     /// Ball–ball normal impulse, along `+x`.
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub normal: f32,
     /// Ball–ball friction impulse `[0, y, z]`.
     pub friction: [f32; 3],
     /// Magnitude of the table friction impulse.
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub table_friction: f32,
 }
 
@@ -166,10 +177,13 @@ pub struct CollideAnswer {
     /// Object ball after the impact.
     pub object: BallAnswer,
     /// Throw of the object ball from the line of centres (degrees, towards `+y`).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub throw_deg: f32,
     /// Cue-ball deflection from the tangent line towards the line of centres (degrees).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub cue_deflection_deg: f32,
     /// Angle between the balls' horizontal directions (degrees).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub separation_deg: f32,
     /// Impulses.
     pub impulses: ImpulsesAnswer,
@@ -202,18 +216,25 @@ impl CollideAnswer {
 #[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub struct ParamsAnswer {
     /// Ball–ball friction μ (the high-speed limit `a` of a speed-dependent law).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub mu: f32,
     /// Amplitude `b` of the speed-dependent friction; 0 for constant μ.
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub mu_b: f32,
     /// Decay rate `c` (s/m); 0 for constant μ.
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub mu_c: f32,
     /// Energetic restitution e*.
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub restitution: f32,
     /// Object-ball/table friction μ_s.
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub mu_s: f32,
     /// Ball radius R (m).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub radius: f32,
     /// Ball mass M (kg).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub mass: f32,
     /// Model.
     pub model: ModelName,
@@ -259,8 +280,10 @@ pub struct StrokeAnswer {
     /// Stroke id.
     pub stroke: u16,
     /// Cue speed just before the impact (m/s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub cue_speed: f32,
     /// Cue-ball speed after the strike (m/s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub ball_speed: f32,
     /// Cue-ball spin after the strike (rad/s).
     pub ball_spin: [f32; 3],
@@ -269,8 +292,10 @@ pub struct StrokeAnswer {
     /// Index of the first sample touched by the impact.
     pub impact_index: u16,
     /// Integration time from the end of the rest to the impact (s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub stroke_duration: f32,
     /// Standard deviation at rest (m/s²): the sensor noise as seen.
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub rest_noise: f32,
 }
 

@@ -33,14 +33,17 @@ pub struct ShotAnswer {
 #[cfg_attr(feature = "schema", derive(postcard_schema::Schema))]
 pub struct StrokePart {
     /// Cue speed at the tip impact (m/s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub cue_speed: f32,
     /// Tip offset asked for (ball radii, right and up).
     pub tip: [f32; 2],
     /// Aim (degrees counter-clockwise from `+x`).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub aim_deg: f32,
     /// Aim as a unit vector.
     pub aim: [f32; 2],
     /// Cue-ball speed after the strike (m/s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub launch_speed: f32,
     /// Cue-ball spin after the strike (rad/s, table frame).
     pub launch_spin: [f32; 3],
@@ -55,16 +58,21 @@ pub struct SolvePart {
     /// The pocket.
     pub pocket: u16,
     /// The aim that pockets it, throw included (degrees).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub aim_deg: f32,
     /// The ghost-ball aim (degrees).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub naive_aim_deg: f32,
     /// `aim_deg − naive_aim_deg` (degrees).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub correction_deg: f32,
     /// The correction as a shift of the contact point (m).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub correction_offset: f32,
     /// Whether the corrected aim hits the object ball thinner.
     pub thinner: bool,
     /// Cut angle at the corrected aim (degrees).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub cut_deg: f32,
     /// Ghost-ball centre at the corrected aim (m).
     pub ghost_ball: [f32; 2],
@@ -73,6 +81,7 @@ pub struct SolvePart {
     /// Shot evaluations the solver made.
     pub evaluations: u32,
     /// Miss at the pocket's mouth at the solution (m).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub residual: f32,
 }
 
@@ -83,14 +92,17 @@ pub struct ContactPart {
     /// The ball hit.
     pub ball: u16,
     /// When (s after the strike).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub time: f32,
     /// Cue-ball centre at contact (m).
     pub cue_position: [f32; 2],
     /// Unit vector from the cue ball to the object ball.
     pub line_of_centres: [f32; 2],
     /// Cut angle (degrees).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub cut_deg: f32,
     /// Cue-ball speed at contact (m/s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub speed: f32,
     /// Cue-ball spin at contact (rad/s, collision frame).
     pub spin: [f32; 3],
@@ -103,6 +115,7 @@ pub struct ContactPart {
     /// Contact regime.
     pub regime: RegimeName,
     /// Throw of the object ball (degrees).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub throw_deg: f32,
 }
 
@@ -119,28 +132,35 @@ pub struct BallPart {
     /// Launch spin (rad/s).
     pub spin: [f32; 3],
     /// Highest hop (m).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub hop_height: f32,
     /// Time in the air (s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub air_time: f32,
     /// Where it lands (m).
     pub landing: [f32; 2],
     /// Time sliding (s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub sliding_time: f32,
     /// Where it starts to roll (m).
     pub rolling_start: [f32; 2],
     /// Rolling velocity (m/s).
     pub rolling_velocity: [f32; 2],
     /// Rolling speed (m/s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub rolling_speed: f32,
     /// Rolling direction (degrees).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub rolling_direction_deg: f32,
     /// When it would stop on an endless table (s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub stop_time: f32,
     /// Where it would stop on an endless table (m).
     pub rest: [f32; 2],
     /// How the path ends.
     pub end: EndName,
     /// When (s).
+    #[serde(serialize_with = "crate::wire::f32_field")]
     pub end_time: f32,
     /// Where (m).
     pub end_position: [f32; 2],
