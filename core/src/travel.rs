@@ -287,7 +287,9 @@ impl Motion {
     }
 
     /// Time from the start until the ball stops (s): from then on `velocity_at` is zero
-    /// and `position_at` is `rest()`.
+    /// and `position_at` is `rest()`. Out of line: five inlined copies in a firmware image
+    /// were larger than their calls.
+    #[inline(never)]
     pub fn stop_time(&self) -> f32 {
         self.air_time + self.sliding_time + self.rolling_time
     }

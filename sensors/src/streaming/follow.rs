@@ -146,7 +146,9 @@ impl Follow {
     }
 
     /// `L` as its nearest integer and the difference (the sums less the integer part
-    /// stay exact).
+    /// stay exact). Out of line (once a block or a report, not per sample): its two
+    /// inlined copies were larger than their calls.
+    #[inline(never)]
     fn level_parts(&self) -> (i32, f32) {
         let level = self.level;
         let round = if level >= 0.0 {
