@@ -235,6 +235,9 @@ pub(crate) struct Plan {
 }
 
 /// `round(seconds · rate)`, at least `at_least` (casts saturate; inputs are bounded).
+/// Out of line where a plan is derived at run time (the nRF52840's trimmed rate): its
+/// eleven inlined copies were larger than their calls. A `const` plan is unaffected.
+#[inline(never)]
 const fn samples(seconds: f32, rate: f32, at_least: u32) -> u32 {
     let n = (seconds * rate + 0.5) as u32;
     if n < at_least {
