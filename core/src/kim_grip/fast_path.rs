@@ -35,6 +35,11 @@ use crate::real::Real;
 /// ten orders of magnitude above `f32`'s smallest normal number.
 pub(crate) const MIN_SLIP_SQUARED: f32 = 1e-24;
 
+/// Bit pattern of the bound on the sum of impulses `finish` accepts: 0x5B5B_5B5B is
+/// 6.17e16 m/s, chosen because a Cortex-M4 `cmp` takes it as an immediate (1e17's pattern
+/// it does not, and one with its low bits zero LLVM compares by a shift first).
+const MAX_GUARDED_BITS: u32 = 0x5B5B_5B5B;
+
 /// The fast path, or `None` if the scene needs the general one: its `Params` have a
 /// friction law other than a constant μ > 0 or a cue-ball/table friction (their
 /// derived minimum slip is +∞), its slip is below [`MIN_SLIP_SQUARED`], or the guard
@@ -48,8 +53,16 @@ pub(super) fn collide<R: Real>(params: &Params, impact: &Impact) -> Option<Outco
     let slip_y = -R::of(u.y) - radius * R::of(w.z);
     let slip_z = radius * R::of(w.y);
     let slip_squared = slip_y * slip_y + slip_z * slip_z;
-    // Validated inputs keep `slip_squared` finite, so +∞ sends every scene away.
-    let covered = slip_squared >= R::of(derived.kim_grip_min_slip_squared);
+    // Validated inputs keep `slip_squared` finite, so +∞ sends every scene away. In f32
+    // the test compares bit patterns (as integers; for numbers ≥ +0 the same order):
+    // `sqrt_pair` below takes `slip_squared` in a core register anyway, so the compare
+    // reuses that move and needs no FPU status transfer. (A NaN, which validated inputs
+    // cannot give either, would pass here and fail the final guard.)
+    let covered = if R::SINGLE {
+        slip_squared.to_f32().to_bits() >= derived.kim_grip_min_slip_squared.to_bits()
+    } else {
+        slip_squared >= R::of(derived.kim_grip_min_slip_squared)
+    };
     if !covered {
         return None;
     }
@@ -101,12 +114,12 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
         slip_squared,
     );
     let grip_normal = stick_budget / mu; // p*, m/s
-    let restitution = R::of(params.restitution());
     let approach = R::of(impact.velocity().x);
     // The first-order normal impulse (1+e)a/2 (no table friction).
     let first_normal = half_one_plus_restitution * approach;
     // `certain`: the contact grips whatever the table friction ((1+e)a/2 ≥ p*).
     let (table_rate, normal, slides, certain) = if !OBJECT_PRESSED {
+        let restitution = R::of(params.restitution());
         let (normal, slides) = final_normal_impulse::<R, false>(
             approach,
             restitution,
@@ -130,6 +143,7 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
             // the normal impulse above (1+e)a/2 ≥ p*.
             let table_rate = mu_mu_s * end;
             let relief = R::ONE - R::of(0.5) * table_rate;
+            let restitution = R::of(params.restitution());
             let normal =
                 gripped_normal_impulse::<R, false>(approach, restitution, relief, grip_normal);
             (table_rate, normal, false, true)
@@ -137,6 +151,9 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
             let start = slip_z / slip_norm;
             let fraction = first_normal / grip_normal;
             let table_rate = mu_mu_s * (start + fraction * (end - start));
+            // e* is read in each branch that needs it, not once above: only the grips
+            // use it, and here LLVM then loads it after the slide/grip test.
+            let restitution = R::of(params.restitution());
             let (normal, slides) = final_normal_impulse::<R, false>(
                 approach,
                 restitution,
@@ -175,13 +192,13 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
     // The guard of `Outcome::from_impulses` (Σ j² ≤ 1e36 over the four impulses the
     // others derive from), implied by a bound on the normal impulse alone: |j| ≤
     // max(μ p, s*) and table_size ≤ ρ span ≤ p, with μ ≤ 1 and s* ≤ |v₀|/k_z below
-    // 1e4 m/s for validated inputs, so p ≤ 1e17 keeps the sum under 3e34 + 1e8. A NaN
-    // anywhere upstream makes p NaN and fails the test too. With the object ball
-    // pressed, `table` joins the sum: it is at most `table_size ≤ p`, unless the table
-    // direction above failed; then `scale` is ∞ or NaN and `table = scale c_x` is ∞ or
-    // NaN too (`∞ · 0` is NaN), while `table_y` can only fail along with it. It needs no
-    // `abs`: `scale ≥ 0` and `c_x = p − j_z/ν ≥ 0` (j_z < 0 here), so `table` is never
-    // below zero.
+    // 1e4 m/s for validated inputs, so p below `finish`'s bound (6.17e16) keeps the
+    // sum under 1.2e34 + 1e8. A NaN anywhere upstream makes p NaN and fails the test
+    // too. With the object ball pressed, `table` joins the sum: it is at most
+    // `table_size ≤ p`, unless the table direction above failed; then `scale` is ∞ or
+    // NaN and `table = scale c_x` is ∞ or NaN too (`∞ · 0` is NaN), while `table_y` can
+    // only fail along with it. It needs no `abs`: `scale ≥ 0` and `c_x = p − j_z/ν ≥ 0`
+    // (j_z < 0 here), so `table` is never below zero.
     let guarded = if OBJECT_PRESSED {
         normal + table
     } else {
@@ -198,11 +215,11 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
 }
 
 /// The end of both fast paths: `None` unless `guarded` (the sum of impulses whose bound
-/// implies `Outcome::from_impulses`'s guard, see `slide`) is at most 1e17 (a NaN fails
-/// too: the general path then repeats the scene, its guard returns the error or its
-/// zero-slip branch gives the table friction a direction), else the outcome of the
-/// ball–ball impulses `(p, j_y, j_z)` and the pressed object ball's table friction
-/// `(table, table_y, size)`. The friction opposes the slip, whose z component keeps its
+/// implies `Outcome::from_impulses`'s guard, see `slide`) is below 6.17e16
+/// ([`MAX_GUARDED_BITS`]; a NaN fails too: the general path then repeats the scene, its
+/// guard returns the error or its zero-slip branch gives the table friction a
+/// direction), else the outcome of the ball–ball impulses `(p, j_y, j_z)` and the
+/// pressed object ball's table friction `(table, table_y, size)`. The friction opposes the slip, whose z component keeps its
 /// sign while it shrinks (`α k_z ≤ k_z/(k_y + k_z) < 1`), and so does the stick impulse:
 /// with `v_z0 > 0` the friction pushes the cue ball up (`j_z < 0`), else the object ball.
 #[inline(always)]
@@ -214,7 +231,12 @@ pub(super) fn finish<R: Real, const OBJECT_PRESSED: bool>(
     (table, table_y, table_size): (R, R, R),
     regime: Regime,
 ) -> Option<Outcome> {
-    let bounded = guarded <= R::of(1e17);
+    // An unsigned compare of the bit patterns: for `guarded ≥ +0` (a sum of impulses
+    // that are, see `slide`) it orders as the numbers do, and every NaN (of either sign),
+    // every infinity and every number below zero has a larger pattern. One move to a
+    // core register and a compare with an immediate, instead of loading the bound,
+    // comparing in the FPU and moving its flags.
+    let bounded = guarded.to_f32().to_bits() < MAX_GUARDED_BITS;
     if !bounded {
         return None;
     }
