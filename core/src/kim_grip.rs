@@ -37,6 +37,12 @@
 //! is capped by its Coulomb cone `μ_s (−j_z)` (the table's normal impulse on the object
 //! ball is the downward friction `−j_z`; the first-order rate can overshoot it) and
 //! directed along the table-contact slip of the ball–ball impulses alone.
+//!
+//! **A cloth of large friction** (`μ_s >` [`CURVED_MIN_MU_S`], the object ball pressed):
+//! `k_y/k_z` exceeds 1.4 and the single direction and `s*` lose accuracy near the grip,
+//! so the general path follows the slide in pieces and gives the table friction one rate
+//! for compression and another for restitution (`curved`, `normal`); the fast paths
+//! decline such `Params`.
 
 use crate::error::Result;
 use crate::friction::FrictionLaw;
@@ -45,10 +51,16 @@ use crate::outcome::{Outcome, Regime, SpecificImpulses};
 use crate::params::Params;
 use crate::real::Real;
 
+mod curved;
 mod fast_path;
+mod normal;
+mod slip;
 #[cfg(feature = "speed-path")]
 mod speed_path;
+pub(crate) use curved::CURVED_MIN_MU_S;
 pub(crate) use fast_path::MIN_SLIP_SQUARED as FAST_PATH_MIN_SLIP_SQUARED;
+use normal::{final_normal_impulse, gripped_normal_impulse, two_rate_normal_impulse};
+use slip::TangentialSlip;
 
 /// Largest `|v₀|²` ((m/s)²) treated as exact gearing, a slip of 1 pm/s: the fast
 /// path's smallest slip, so that with a constant μ every scene is either on the fast
@@ -156,11 +168,20 @@ fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
         return Outcome::without_friction(params, impact, frictionless_normal, false);
     }
     let slip_speed = slip.unit_norm * scale;
+    // A pressed object ball on a cloth of large friction: the slip's turn followed in
+    // pieces (`curved`), whose sliding path's length replaces s* as the grip threshold.
+    // (Pressed, so the cue ball's table friction does not act: `K` is diagonal.)
+    let curved = (object_pressed && params.mu_s() > CURVED_MIN_MU_S)
+        .then(|| curved::CurvedSlide::new(slip.unit_y, slip.unit_z, scale, k_z));
+    let stick_budget = match &curved {
+        Some(curved) => curved.stop_budget(),
+        None => slip.stick_budget,
+    };
     // Effective compliance along the slip path, k̄ = |v₀| / s* (see `friction`).
-    let compliance = slip_speed / slip.stick_budget;
+    let compliance = slip_speed / stick_budget;
     // p*: the normal impulse at which the slip would stop (may be +inf for tiny μ).
     let grip_normal = match law {
-        FrictionLaw::Constant(mu) => slip.stick_budget / R::of(mu),
+        FrictionLaw::Constant(mu) => stick_budget / R::of(mu),
         FrictionLaw::SpeedDependent { .. } => {
             law.normal_impulse_between(slip_speed, R::ZERO, compliance)
         }
@@ -168,7 +189,7 @@ fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
     // Friction budget S(p) = ∫ μ dp spent by normal impulse p while sliding.
     let budget_after = |normal: R| -> R {
         if normal >= grip_normal {
-            slip.stick_budget
+            stick_budget
         } else {
             match law {
                 FrictionLaw::Constant(mu) => R::of(mu) * normal,
@@ -182,34 +203,79 @@ fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
     // The friction direction's vertical share at the first-order budget, for the
     // table-friction rate ρ (table impulse per unit normal impulse while sliding).
     let first_budget = budget_after(frictionless_normal);
-    let first_share_z = slip.pressing_share(first_budget);
     let first_span = R::min(frictionless_normal, grip_normal);
-    // Table friction along x per unit normal impulse while sliding: the object ball's
-    // (topspin) holds it back, the cue ball's (draw) slows the approach.
-    let table_rate = if first_span <= R::ZERO {
-        // The slip stops at once (or no impact at all): nothing to spread a rate over.
-        R::ZERO
-    } else if object_pressed {
-        R::of(params.mu_s()) * first_share_z * first_budget / first_span
-    } else {
-        -mu_ct * cue_dir_x * first_share_z * first_budget / first_span
+    // The table friction's rate (table impulse along x per unit normal impulse) up to
+    // the end of compression and after it.
+    let (compression_rate, restitution_rate) = match &curved {
+        None => {
+            let first_share_z = slip.pressing_share(first_budget);
+            // One rate while sliding: the object ball's table friction (topspin) holds
+            // it back, the cue ball's (draw) slows the approach.
+            let table_rate = if first_span <= R::ZERO {
+                // The slip stops at once (or no impact at all): no span for a rate.
+                R::ZERO
+            } else if object_pressed {
+                R::of(params.mu_s()) * first_share_z * first_budget / first_span
+            } else {
+                -mu_ct * cue_dir_x * first_share_z * first_budget / first_span
+            };
+            (table_rate, table_rate)
+        }
+        Some(curved) => {
+            // While the object ball's table contact slides its friction is μ_s times the
+            // pressing impulse |J_z(S)|, which grows faster as the slip turns towards z:
+            // one rate up to the first-order compression end a/2, another after it, from
+            // the pieces' |J_z| there and at the first-order end.
+            let mu_s = R::of(params.mu_s());
+            let pressing = |budget: R| -> R {
+                if budget >= stick_budget {
+                    R::abs(slip.stick_z)
+                } else {
+                    R::abs(curved.impulse(budget).1)
+                }
+            };
+            let compression_span = R::min(half * approach, grip_normal);
+            let compression_pressing = pressing(budget_after(compression_span));
+            let compression_rate = if compression_span > R::ZERO {
+                mu_s * compression_pressing / compression_span
+            } else {
+                R::ZERO
+            };
+            let rest_span = first_span - compression_span;
+            let restitution_rate = if rest_span > R::of(1e-3) * first_span {
+                // Pressing per unit normal impulse: at least 0, at most the fastest μ.
+                let rate = (pressing(first_budget) - compression_pressing) / rest_span;
+                mu_s * R::min(R::max(rate, R::ZERO), R::of(law.largest()))
+            } else {
+                compression_rate
+            };
+            (compression_rate, restitution_rate)
+        }
     };
-    let (normal, slides) = final_normal_impulse::<R, true>(
+    let (normal, slides, compression_end) = two_rate_normal_impulse(
         approach,
         restitution,
-        frictionless_normal,
-        table_rate,
+        compression_rate,
+        restitution_rate,
         grip_normal,
     );
+    let span = R::min(normal, grip_normal);
+    let pressed_table = compression_rate * R::min(span, compression_end)
+        + restitution_rate * R::max(span - compression_end, R::ZERO);
 
     let (j_y, j_z, regime) = if slides {
         let budget = budget_after(normal);
-        let (dir_y, dir_z) = slip.friction_direction(budget);
-        (budget * dir_y, budget * dir_z, Regime::Sliding)
+        let (j_y, j_z) = match &curved {
+            Some(curved) => curved.impulse(budget),
+            None => {
+                let (dir_y, dir_z) = slip.friction_direction(budget);
+                (budget * dir_y, budget * dir_z)
+            }
+        };
+        (j_y, j_z, Regime::Sliding)
     } else {
         (slip.stick_y, slip.stick_z, Regime::Gripping)
     };
-    let pressing_span = R::min(normal, grip_normal);
     let (table, cue_table_x, cue_table_y) = if object_pressed {
         // Coulomb's cone at the object ball's table contact: its friction impulse is at
         // most μ_s times the table's normal impulse on it, which (per unit mass, m/s) is
@@ -218,7 +284,7 @@ fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
         // above that (issue 16 item 3: the invariants suite's object-ball table cone);
         // the cone caps it.
         let cone = R::of(params.mu_s()) * R::max(-j_z, R::ZERO);
-        (R::min(table_rate * pressing_span, cone), R::ZERO, R::ZERO)
+        (R::min(pressed_table, cone), R::ZERO, R::ZERO)
     } else {
         // Pressing impulse on the cue ball = the upward friction impulse on the object.
         let pressing = R::max(j_z, R::ZERO);
@@ -228,7 +294,7 @@ fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
             -mu_ct * pressing * cue_dir_y,
         )
     };
-    let (table_x, table_y) = table_friction_components(table, pressing_span, j_y, j_z);
+    let (table_x, table_y) = table_friction_components(table, span, j_y, j_z);
     let impulses = SpecificImpulses {
         normal,
         friction_y: j_y,
@@ -286,192 +352,6 @@ fn table_friction_components<R: Real>(table: R, span: R, j_y: R, j_z: R) -> (R, 
 #[inline(always)]
 fn table_contact_slip<R: Real>(span: R, j_y: R, j_z: R) -> (R, R) {
     (span - j_z * R::of(2.5), j_y)
-}
-
-/// The initial tangential slip and the quantities derived from it. The slip
-/// compliance is `K = [[k_y, k_yz], [0, k_z]]` (`Δv = K J`).
-struct TangentialSlip<R> {
-    /// Slip direction scaled so its largest component is ±1 (`v₀ / scale`).
-    unit_y: R,
-    unit_z: R,
-    k_yz: R,
-    k_z: R,
-    /// `|v₀| / scale`.
-    unit_norm: R,
-    /// Stick impulse `j_stick = −K⁻¹ v₀` (m/s).
-    stick_y: R,
-    stick_z: R,
-    /// `s* = |j_stick|` (m/s): friction budget that stops the slip.
-    stick_budget: R,
-    /// `α_b / |v₀|`: where `v₀ − α K v̂₀` turns parallel to `K⁻¹ v₀`.
-    boundary_alpha_per_norm: R,
-    /// `s* / |v₀|`.
-    stick_per_norm: R,
-    /// `|v̂₀_z|` and `|ĵ_stick,z|`: the friction direction's vertical share when the
-    /// slide starts and when it ends in a grip.
-    start_share_z: R,
-    stick_share_z: R,
-}
-
-impl<R: Real> TangentialSlip<R> {
-    fn new(slip_y: R, slip_z: R, scale: R, k_yz: R, k_z: R) -> Self {
-        let unit_y = slip_y / scale;
-        let unit_z = slip_z / scale;
-        let unit_norm = R::sqrt(unit_y * unit_y + unit_z * unit_z);
-        // K⁻¹ u, u = v₀ / scale.
-        let inverse_z = unit_z / k_z;
-        let inverse_y = (unit_y - k_yz * inverse_z) / k_y::<R>();
-        let unit_stick = R::sqrt(inverse_y * inverse_y + inverse_z * inverse_z);
-        // α_b/|v₀| = cross(u, K⁻¹u) / cross(K u, K⁻¹u); 1/(k_y + k_z) when K is
-        // diagonal, and any value when v₀ is an eigenvector (the direction cannot turn).
-        let (ku_y, ku_z) = (k_y::<R>() * unit_y + k_yz * unit_z, k_z * unit_z);
-        let numerator = unit_y * inverse_z - unit_z * inverse_y;
-        let denominator = ku_y * inverse_z - ku_z * inverse_y;
-        let boundary_alpha_per_norm = if R::abs(denominator) > R::of(1e-12) {
-            numerator / denominator
-        } else {
-            R::ONE / (k_y::<R>() + k_z)
-        };
-        Self {
-            unit_y,
-            unit_z,
-            k_yz,
-            k_z,
-            unit_norm,
-            stick_y: -inverse_y * scale,
-            stick_z: -inverse_z * scale,
-            stick_budget: unit_stick * scale,
-            boundary_alpha_per_norm,
-            stick_per_norm: unit_stick / unit_norm,
-            start_share_z: R::abs(unit_z) / unit_norm,
-            stick_share_z: R::abs(inverse_z) / unit_stick,
-        }
-    }
-
-    /// Unit direction of the friction impulse on the object ball after a friction
-    /// budget `budget = μ p` (m/s), `budget ≤ s*` (clamped).
-    fn friction_direction(&self, budget: R) -> (R, R) {
-        let half = R::of(0.5);
-        // f = S / s* in [0, 1], written so that no 0/0 or ∞/∞ can occur.
-        let fraction = if budget >= self.stick_budget {
-            R::ONE
-        } else {
-            budget / self.stick_budget
-        };
-        // α / |v₀| in units where |v₀| = unit_norm · scale; σ = s*/|v₀|.
-        let sigma = self.stick_budget_per_norm();
-        let alpha_per_norm = half * fraction * sigma
-            + (self.boundary_alpha_per_norm - half * sigma) * fraction * fraction;
-        // v_m / scale = u − (α/|v₀|) K u.
-        let mid_y =
-            self.unit_y - alpha_per_norm * (k_y::<R>() * self.unit_y + self.k_yz * self.unit_z);
-        let mid_z = self.unit_z * (R::ONE - alpha_per_norm * self.k_z);
-        let inv = R::ONE / R::sqrt(mid_y * mid_y + mid_z * mid_z);
-        (-mid_y * inv, -mid_z * inv)
-    }
-
-    /// `|ĵ_z|`, the friction direction's vertical share, for the table-friction rate
-    /// after a budget `budget` (m/s): linear in the spent fraction `f = S/s*` (clamped
-    /// at 1) between its exact values at the start of the slide (`v̂₀`) and at the
-    /// grip (`K⁻¹v₀`, where the direction meets the stick impulse). The mid-point
-    /// direction of [`Self::friction_direction`] gives the same ends and costs a square
-    /// root in between; against the reference on the 10k grid the interpolation moves
-    /// `KimGrip`'s largest velocity error from 0.100 % to 0.111 % of U
-    /// (`docs/physics.md` §4).
-    fn pressing_share(&self, budget: R) -> R {
-        let fraction = if budget >= self.stick_budget {
-            R::ONE
-        } else {
-            budget / self.stick_budget
-        };
-        self.start_share_z + fraction * (self.stick_share_z - self.start_share_z)
-    }
-
-    /// `σ = s* / |v₀|`, a pure number of order `1/k`.
-    fn stick_budget_per_norm(&self) -> R {
-        self.stick_per_norm
-    }
-}
-
-/// Final normal impulse per unit mass (m/s) for approach speed `a`, energetic
-/// restitution `e`, table-friction rate `ρ` acting up to the grip impulse `p*`;
-/// `first_normal` is the frictionless impulse `(1+e)a/2` (the caller has it).
-///
-/// `v_x(p) = −a + (2 − ρ) p` for `p ≤ p*`, slope 2 after; compression ends at
-/// `v_x = 0`; restitution ends when the work done since then is `e² |W_c|`.
-///
-/// Returns the impulse and whether the contact slides to the end (`p ≤ p*`, regime
-/// `Sliding`; otherwise `p > p*` and it grips): the branch taken here decides it, so
-/// the callers need no second comparison. At `p = p*` exactly both regimes give the
-/// same friction (the direction meets the stick impulse there).
-///
-/// `CLAMPED` keeps the two square roots' arguments non-negative and the one division
-/// defined where rounding or `e = 0` could break them. Without it (the fast path)
-/// such a scene gives NaN, which the caller's guard hands to the clamped general path.
-#[inline(always)]
-fn final_normal_impulse<R: Real, const CLAMPED: bool>(
-    a: R,
-    e: R,
-    first_normal: R,
-    rho: R,
-    grip: R,
-) -> (R, bool) {
-    let half = R::of(0.5);
-    // Half the sliding slope, 1 − ρ/2, so that the sliding end (1+e) a/(2 − ρ) is one
-    // division of the frictionless impulse.
-    let relief = R::ONE - half * rho;
-    let sliding_end = first_normal / relief;
-    if sliding_end <= grip {
-        return (sliding_end, true);
-    }
-    (
-        gripped_normal_impulse::<R, CLAMPED>(a, e, relief, grip),
-        false,
-    )
-}
-
-/// [`final_normal_impulse`] when the contact grips (`p* <` the sliding end
-/// `(1+e) a/(2 − ρ)`), given `relief = 1 − ρ/2`.
-#[inline(always)]
-fn gripped_normal_impulse<R: Real, const CLAMPED: bool>(a: R, e: R, relief: R, grip: R) -> R {
-    let half = R::of(0.5);
-    let slope = relief + relief; // 2 − ρ
-    let compression_end = a / slope;
-    if grip >= compression_end {
-        // Grip during restitution at v* = slope (p* − p_c): the work done from p_c
-        // to p* is `v* (p* − p_c)/2`, so twice the work left is
-        // `w = e² a p_c − v* (p* − p_c)`, done on the slope-2 piece: v* q + q² = w/2,
-        // whose root q = w/(v* + √(v*² + 2w)) has no cancellation. `w > 0` and
-        // `v* ≥ 0` in exact arithmetic (the grip comes before the sliding end).
-        let past_compression = grip - compression_end;
-        let v_star = slope * past_compression;
-        let twice_rest = e * e * a * compression_end - v_star * past_compression;
-        let twice_rest = if CLAMPED {
-            R::max(twice_rest, R::ZERO)
-        } else {
-            twice_rest
-        };
-        let denominator = v_star + R::sqrt(v_star * v_star + (twice_rest + twice_rest));
-        let extra = if !CLAMPED || denominator > R::ZERO {
-            twice_rest / denominator
-        } else {
-            R::ZERO
-        };
-        grip + extra
-    } else {
-        // Grip during compression: slope 2 from p*, compression ends at p_c, then
-        // (p − p_c)² = e² |W_c|, `W_c < 0` in exact arithmetic.
-        let v_star = -a + slope * grip;
-        let work_at_grip = -a * grip + half * slope * grip * grip;
-        let compression_end = grip - half * v_star;
-        let compression_work = work_at_grip - R::of(0.25) * v_star * v_star;
-        let depth = if CLAMPED {
-            R::max(-compression_work, R::ZERO)
-        } else {
-            -compression_work
-        };
-        compression_end + e * R::sqrt(depth)
-    }
 }
 
 #[cfg(test)]

@@ -93,8 +93,15 @@ impl Derived {
         // μ ≤ 1 too: a law built from the enum's variant skips `FrictionLaw::constant`'s
         // check, and the fast path's guard relies on the validated range (the general
         // path guards every impulse).
+        // A pressed object ball's slide on a cloth of μ_s above `CURVED_MIN_MU_S` is
+        // followed in pieces, on the general path only (`kim_grip::curved`).
+        let straight = mu_s <= crate::kim_grip::CURVED_MIN_MU_S;
         let kim_grip_mu = match friction {
-            FrictionLaw::Constant(mu) if mu > 0.0 && mu <= 1.0 && mu_ct == 0.0 && inside => mu,
+            FrictionLaw::Constant(mu)
+                if mu > 0.0 && mu <= 1.0 && mu_ct == 0.0 && inside && straight =>
+            {
+                mu
+            }
             _ => 0.0,
         };
         #[cfg(feature = "speed-path")]
@@ -103,7 +110,13 @@ impl Derived {
             // built from the enum's variant skips `FrictionLaw::speed_dependent`'s check
             // (the `collide` fuzz target found a = −0.92 giving an infinite velocity).
             FrictionLaw::SpeedDependent { a, b, c }
-                if a >= 1e-6 && b > 0.0 && c > 0.0 && c <= 100.0 && mu_ct == 0.0 && inside =>
+                if a >= 1e-6
+                    && b > 0.0
+                    && c > 0.0
+                    && c <= 100.0
+                    && mu_ct == 0.0
+                    && inside
+                    && straight =>
             {
                 Some(SpeedLaw { a, b, c })
             }

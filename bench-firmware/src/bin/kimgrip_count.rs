@@ -2,7 +2,8 @@
 //! regression of more than 5 % fails CI; issue 4: `KimGrip` f32 ≤ 150 instructions per
 //! collision): counts the f32 `KimGrip` prediction on fixed shots, one for each branch
 //! of its constant-μ fast path, one for each branch of its speed-dependent μ(v) fast path
-//! (issue 16 item 6: ≤ 200), plus four the general path takes, with the bench's method
+//! (issue 16 item 6: ≤ 200), plus six the general path takes (two on a cloth of large
+//! friction, whose slide it follows in pieces), with the bench's method
 //! ([`cuesight_bench::count`]: function pointer, empty call subtracted, QEMU
 //! `-icount shift=0`). A branch has no loop, so its count does not depend on the
 //! numbers: the largest fast-path count is the fast path's worst case.
@@ -169,6 +170,24 @@ const SHOTS: [Shot; 20] = [
     ),
 ];
 
+/// μ_s of the cloth shots: above `CURVED_MIN_MU_S` (0.4), where the general path
+/// follows a pressed object ball's slide in pieces (`kim_grip::curved`).
+const CLOTH_MU_S: f32 = 0.8;
+
+/// Shots on a cloth of μ_s [`CLOTH_MU_S`] (μ 0.05, POOL otherwise), on the general
+/// path: topspin that slides to the end and topspin that grips.
+const CLOTH_SHOTS: [(&str, [f32; 2], [f32; 3]); 2] = [
+    ("cloth-topspin-slides", [2.0, 0.0], [0.0, 70.0, 0.0]),
+    ("cloth-topspin-grips", [2.0, 0.3], [0.0, 7.0, 0.0]),
+];
+
+/// Instructions per f32 `KimGrip` prediction, in thousandths (the bench's method).
+fn milli_instructions(params: &Params, impact: &Impact) -> u64 {
+    let c = count::count(cuesight::collide, params, impact, Model::KimGrip);
+    let ticks = u64::from(c.ticks.saturating_sub(c.empty_ticks));
+    ticks * u64::from(INSTRUCTIONS_PER_TICK) * 1000 / u64::from(c.reps)
+}
+
 #[cortex_m_rt::entry]
 fn main() -> ! {
     cortex_m::interrupt::disable();
@@ -185,9 +204,7 @@ fn main() -> ! {
         let (Ok(params), Ok(impact)) = (params, Impact::from_velocity(v, w)) else {
             exit::exit(false)
         };
-        let c = count::count(cuesight::collide, &params, &impact, Model::KimGrip);
-        let ticks = u64::from(c.ticks.saturating_sub(c.empty_ticks));
-        let milli = ticks * u64::from(INSTRUCTIONS_PER_TICK) * 1000 / u64::from(c.reps);
+        let milli = milli_instructions(&params, &impact);
         let name = match path {
             Fast => "fast",
             Speed => "speed",
@@ -199,6 +216,16 @@ fn main() -> ! {
             fast_max_milli = fast_max_milli.max(milli);
             fast_shots += 1;
         }
+    }
+    for (label, v, w) in CLOTH_SHOTS {
+        let params = Params::POOL
+            .with_mu(0.05)
+            .and_then(|p| p.with_mu_s(CLOTH_MU_S));
+        let (Ok(params), Ok(impact)) = (params, Impact::from_velocity(v, w)) else {
+            exit::exit(false)
+        };
+        let milli = milli_instructions(&params, &impact);
+        let _ = writeln!(out, "kimgrip-shot {label} general {milli}");
     }
     let _ = writeln!(out, "kimgrip-fast-max {fast_max_milli}");
     let _ = writeln!(

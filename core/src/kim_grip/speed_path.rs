@@ -231,3 +231,6 @@ fn slide<const OBJECT_PRESSED: bool>(
         regime,
     )
 }
+
+#[cfg(test)]
+mod tests;

@@ -329,15 +329,16 @@ fn branch_table(report: &Value) -> String {
         .filter_map(|s| s["instructions"].as_f64())
         .fold(f64::NAN, f64::max);
     let mut md = format!(
-        "- Every branch of `KimGrip`'s fast path (constant μ, slip ≥ 1 pm/s: every \
-         constant-μ scene but exact gearing) takes at most {} instructions: {} for every \
+        "- Every branch of `KimGrip`'s fast path (constant μ, μ_s ≤ 0.4, slip ≥ 1 pm/s: \
+         every such scene but exact gearing) takes at most {} instructions: {} for every \
          collision. A branch has no loop, so one shot per branch covers them all \
          (`bench-firmware/src/bin/kimgrip_count.rs`; which branch each shot takes is \
          checked by the core's `gate_shots_take_their_branches`; `cargo xtask test` fails \
          above {KIM_GRIP_TARGET}). TP A.14's speed-dependent μ(v) has a fast path of its own \
          (`speed`, issue 16's target 200; `docs/physics.md` §4); the general path serves \
-         everything else: no friction, exact gearing, the cue ball's table friction, and \
-         μ(v) past that path's range:\n\n\
+         everything else: no friction, exact gearing, the cue ball's table friction, \
+         μ(v) past that path's range, and cloths of μ_s above 0.4 (`cloth-*`: a pressed \
+         object ball's slide followed in pieces, `docs/physics.md` §4 item 7):\n\n\
          | shot | path | instructions |\n|---|---|---:|\n",
         instructions(fast_max),
         verdict(fast_max <= KIM_GRIP_TARGET),
