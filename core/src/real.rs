@@ -47,6 +47,10 @@ pub trait Real:
     fn to_f32(self) -> f32;
     /// Square root.
     fn sqrt(x: Self) -> Self;
+    /// [`Real::sqrt`], always inlined (`math::sqrt_inline`): `KimGrip`'s fast paths.
+    fn sqrt_inline(x: Self) -> Self {
+        Self::sqrt(x)
+    }
     /// Square roots of two numbers, `(sqrt(a), sqrt(b))` (one instruction sequence
     /// for both where that is cheaper: `math::sqrt_pair`).
     fn sqrt_pair(a: Self, b: Self) -> (Self, Self) {
@@ -113,6 +117,10 @@ impl Real for f32 {
     #[inline(always)]
     fn sqrt(x: Self) -> Self {
         crate::math::sqrt(x)
+    }
+    #[inline(always)]
+    fn sqrt_inline(x: Self) -> Self {
+        crate::math::sqrt_inline(x)
     }
     #[inline(always)]
     fn sqrt_pair(a: Self, b: Self) -> (Self, Self) {

@@ -278,7 +278,7 @@ pub(super) fn sliding_impulse<R: Real>(
     let alpha = fraction * (half_sigma + curvature * fraction);
     let mid_y = slip_y - alpha * (k_y::<R>() * slip_y);
     let mid_z = slip_z - alpha * (k_z * slip_z);
-    let scale = budget / R::sqrt(mid_y * mid_y + mid_z * mid_z);
+    let scale = budget / R::sqrt_inline(mid_y * mid_y + mid_z * mid_z);
     (-scale * mid_y, -scale * mid_z)
 }
 
@@ -306,6 +306,6 @@ pub(super) fn table_friction<R: Real>(
         R::min(table_rate * span, -(mu_s * j_z))
     };
     let (slip_x, slip_y) = table_contact_slip(span, j_y, j_z);
-    let scale = size / R::sqrt(slip_x * slip_x + slip_y * slip_y);
+    let scale = size / R::sqrt_inline(slip_x * slip_x + slip_y * slip_y);
     (scale * slip_x, -scale * slip_y, size)
 }

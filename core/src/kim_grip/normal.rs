@@ -85,7 +85,7 @@ fn grip_in_restitution<R: Real, const CLAMPED: bool>(
     } else {
         twice_rest
     };
-    let denominator = v_star + R::sqrt(v_star * v_star + (twice_rest + twice_rest));
+    let denominator = v_star + R::sqrt_inline(v_star * v_star + (twice_rest + twice_rest));
     let extra = if !CLAMPED || denominator > R::ZERO {
         twice_rest / denominator
     } else {
@@ -109,7 +109,7 @@ fn grip_in_compression<R: Real, const CLAMPED: bool>(a: R, e: R, slope: R, grip:
     } else {
         -compression_work
     };
-    compression_end + e * R::sqrt(depth)
+    compression_end + e * R::sqrt_inline(depth)
 }
 
 /// [`final_normal_impulse`] (clamped) with the table friction's rate `rho_compression`
@@ -144,7 +144,7 @@ pub(super) fn two_rate_normal_impulse<R: Real>(
     let twice_work = e * e * a * compression_end;
     let slope = R::of(2.0) - rho_restitution;
     // Sliding to the end: slope q²/2 = e² a p_c/2.
-    let sliding_end = compression_end + R::sqrt(R::max(twice_work / slope, R::ZERO));
+    let sliding_end = compression_end + R::sqrt_inline(R::max(twice_work / slope, R::ZERO));
     if sliding_end <= grip {
         return (sliding_end, true, compression_end);
     }
