@@ -45,7 +45,12 @@ fn main() {
     println!("{tables}");
     println!("#### Worst scene per model\n");
     for (m, (name, _)) in cuesight_host::domain::MODELS.iter().enumerate() {
-        let (i, worst) = worst_scene(&scored, m, |_| true).expect("scenes");
+        // Among the scenes the model answers (a refusal outside its validity domain
+        // counts as infinitely wrong in the tables, not here); none answered: skip.
+        let Some((i, worst)) = worst_scene(&scored, m, |s| s.errors[m].is_some()) else {
+            println!("- {name}: no scene answered");
+            continue;
+        };
         let (t, throw) = worst_throw_scene(&scored, m).expect("scenes");
         for (what, index, s) in [("combined", i, worst), ("throw", t, throw)] {
             let d = &s.scene;
@@ -67,7 +72,9 @@ fn main() {
     println!("\n#### KimGrip's worst scene per μ·μ_s band\n");
     let bands = cuesight_host::domain::MU_MU_S_BANDS;
     for (b, hi) in bands.iter().enumerate() {
-        let worst = worst_scene(&scored, 2, |s| mu_mu_s_band(s) == b);
+        let worst = worst_scene(&scored, 2, |s| {
+            mu_mu_s_band(s) == b && s.errors[2].is_some()
+        });
         if let Some((i, s)) = worst {
             let d = &s.scene;
             println!(

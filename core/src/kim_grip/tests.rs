@@ -271,14 +271,7 @@ fn fast_path_agrees_with_the_general_path() {
         }
         Some((worst, fast.regime == general.regime))
     }
-    // A small deterministic generator (no dev-dependency in the unit tests).
-    let mut state = 0x9e37_79b9_7f4a_7c15u64;
-    let mut uniform = |lo: f32, hi: f32| {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
-    };
+    let mut uniform = uniform_from(0x9e37_79b9_7f4a_7c15);
     let (mut checked, mut regime_differs) = (0, 0);
     let (mut worst32, mut worst64) = (0.0f32, 0.0f32);
     for _ in 0..20_000 {
@@ -340,4 +333,15 @@ fn fast_path_declines_a_cloth_of_large_friction() {
     assert!(fast_path::collide::<f64>(&above, &impact).is_none());
     // The general path answers it, the slide followed in pieces.
     assert!(collide::<f32>(&above, &impact).is_ok());
+}
+
+/// A small deterministic generator (no dev-dependency in the unit tests): a 64-bit LCG
+/// from `state`, each call a number uniform in `[lo, hi)` from its top 24 bits.
+pub(super) fn uniform_from(mut state: u64) -> impl FnMut(f32, f32) -> f32 {
+    move |lo: f32, hi: f32| {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
+    }
 }

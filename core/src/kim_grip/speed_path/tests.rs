@@ -9,13 +9,7 @@ use crate::kim_grip::{general, speed_path};
 #[test]
 fn speed_path_agrees_with_the_general_path() {
     extern crate std;
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    let mut uniform = |lo: f32, hi: f32| {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
-    };
+    let mut uniform = crate::kim_grip::tests::uniform_from(0x2545_f491_4f6c_dd1d);
     let (mut checked, mut regime_differs, mut sliding) = (0, 0, 0);
     let (mut worst, mut worst_general32) = (0.0f32, 0.0f32);
     for _ in 0..20_000 {
