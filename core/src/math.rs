@@ -35,7 +35,7 @@ pub(crate) mod fast;
 
 /// Square root of `x` (`x ≥ 0`; returns NaN for negative input like IEEE `sqrt`).
 /// Out of line with the `compact-sqrt` feature (the firmware's: smaller than the
-/// inlined block at every call), else inlined ([`sqrt_inline`]).
+/// inlined block at every call), else inlined (`sqrt_inline`).
 #[cfg_attr(feature = "compact-sqrt", inline(never))]
 #[cfg_attr(not(feature = "compact-sqrt"), inline(always))]
 pub fn sqrt(x: f32) -> f32 {
