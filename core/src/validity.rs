@@ -10,7 +10,7 @@
 //! |---|---|---|
 //! | `Ideal` | everywhere (frictionless and elastic by definition: every invariant holds) | — |
 //! | `Kim` | the contact slides for the whole impact: gripping index `g = μ p₀ / s* ≤ 1` | [`Reason::Grips`] |
-//! | `KimGrip` | `μ ≤` [`KIM_GRIP_MAX_MU`], `μ·μ_s ≤` [`KIM_GRIP_MAX_MU_MU_S`], `μ·μ_ct ≤` [`KIM_GRIP_MAX_MU_MU_CT`]; with cue-ball/table friction acting (`μ_ct > 0` and `μ > 0`) also `e* ≥` [`KIM_GRIP_MIN_RESTITUTION`] | [`Reason::Friction`], [`Reason::TableFriction`], [`Reason::CueTableFriction`], [`Reason::NearlyPlastic`] |
+//! | `KimGrip` | `μ ≤` [`KIM_GRIP_MAX_MU`] (a speed-dependent law: `μ(0) ≤` [`KIM_GRIP_MAX_SPEED_DEPENDENT_MU`]), `μ·μ_s ≤` [`KIM_GRIP_MAX_MU_MU_S`], `μ·μ_ct ≤` [`KIM_GRIP_MAX_MU_MU_CT`]; with cue-ball/table friction acting (`μ_ct > 0` and `μ > 0`) also `e* ≥` [`KIM_GRIP_MIN_RESTITUTION`] | [`Reason::Friction`], [`Reason::TableFriction`], [`Reason::CueTableFriction`], [`Reason::NearlyPlastic`] |
 //! | `SeedExact` | everywhere (every invariant holds on 1.6 million domain scenes) | — |
 //! | `Exact` | everywhere | — |
 //!
@@ -21,8 +21,10 @@
 //! `host-tests/tests/domain.rs` asserts it on seed 16). Outside it the errors grow: with
 //! cue-ball/table friction the model keeps that friction at its initial direction while
 //! the slip turns by up to 27° in the impact (μ·μ_ct > 0.01: up to 2.95 % of U, 7.3 % in
-//! R ω); above μ = 0.15 the slide direction's midpoint rule and the anisotropic grip
-//! threshold lose accuracy (0.65 % / 1.6 %); above μ·μ_s = 0.08 the table friction's
+//! R ω); above μ = 0.15 the single mid-point direction and the anisotropic grip
+//! threshold lost accuracy (0.65 % / 1.6 %) until the slide was followed in pieces with
+//! the table friction along its own direction (`kim_grip::curved`), which holds the
+//! bounds up to μ = 1 for a constant μ; above μ·μ_s = 0.08 the table friction's
 //! second-order terms (up to 3.8 % / 10.8 % by μ·μ_s = 0.2); from μ·μ_s ≈ 0.7 it created
 //! energy. Every pool, snooker and carom ball–cloth pair measured (μ 0.01–0.12 with its
 //! speed dependence, μ_s ≈ 0.2–0.3) is inside.
@@ -36,6 +38,7 @@
 //! stick impulse `s* = |K⁻¹ v₀|` (m/s).
 
 use crate::error::{Error, Result};
+use crate::friction::FrictionLaw;
 use crate::params::Params;
 
 /// A collision model without its parameters, as named by
@@ -83,7 +86,8 @@ pub enum Reason {
     /// 1). Kim assumes sliding for the whole impact (physics-notes E6); beyond `g = 2`
     /// its answer also creates energy (`host-tests/tests/invariants.rs`).
     Grips,
-    /// `KimGrip`: μ (the value; the law's largest, `μ(0)`) above [`KIM_GRIP_MAX_MU`].
+    /// `KimGrip`: μ (the value; the law's largest, `μ(0)`) above [`KIM_GRIP_MAX_MU`], or
+    /// for a speed-dependent law above [`KIM_GRIP_MAX_SPEED_DEPENDENT_MU`].
     Friction,
     /// `KimGrip`: `μ·μ_s` (the value) above [`KIM_GRIP_MAX_MU_MU_S`]: the object ball's
     /// table friction enters at second order, which the model leaves out (issue 16: 27 %
@@ -114,7 +118,7 @@ impl Reason {
     pub const fn limit(self) -> &'static str {
         match self {
             Reason::Grips => "gripping index mu p0 / s* <= 1 (the contact slides throughout)",
-            Reason::Friction => "mu <= 0.15",
+            Reason::Friction => "mu <= 1 (a speed-dependent law: mu(0) <= 0.15)",
             Reason::TableFriction => "mu * mu_s <= 0.08",
             Reason::CueTableFriction => "mu * mu_ct <= 0.01",
             Reason::NearlyPlastic => "restitution >= 0.01 when mu_ct > 0",
@@ -122,8 +126,24 @@ impl Reason {
     }
 }
 
-/// Largest μ (the law's largest, `μ(0)`) in `KimGrip`'s domain ([`Reason::Friction`]).
-pub const KIM_GRIP_MAX_MU: f32 = 0.15;
+/// Largest constant μ in `KimGrip`'s domain ([`Reason::Friction`]): the whole accepted
+/// range (a law built from the enum's variant can hold more).
+pub const KIM_GRIP_MAX_MU: f32 = 1.0;
+
+/// Largest `μ(0)` of a speed-dependent law in `KimGrip`'s domain ([`Reason::Friction`]):
+/// above it the general path's μ(v) budget (a constant compliance along the slide) errs
+/// by more than 0.1° of throw on slow balls (0.102° at `μ(0)` 0.63, U 0.04 m/s: seed
+/// 16's domain scene 157141 of 10⁶, `host-tests/examples/kim_grip_inside.rs`).
+pub const KIM_GRIP_MAX_SPEED_DEPENDENT_MU: f32 = 0.15;
+
+/// The largest μ (the law's largest, `μ(0)`) `KimGrip` takes for `law`:
+/// [`KIM_GRIP_MAX_MU`], or [`KIM_GRIP_MAX_SPEED_DEPENDENT_MU`] for a speed-dependent law.
+pub const fn kim_grip_max_mu(law: &FrictionLaw) -> f32 {
+    match law {
+        FrictionLaw::SpeedDependent { .. } => KIM_GRIP_MAX_SPEED_DEPENDENT_MU,
+        FrictionLaw::Constant(_) => KIM_GRIP_MAX_MU,
+    }
+}
 
 /// Largest `μ·μ_s` in `KimGrip`'s domain ([`Reason::TableFriction`]).
 pub const KIM_GRIP_MAX_MU_MU_S: f32 = 0.08;
@@ -141,19 +161,27 @@ pub const KIM_GRIP_MIN_RESTITUTION: f32 = 0.01;
 ///
 /// ```
 /// use cuesight::validity::{kim_grip, Reason};
-/// use cuesight::{Error, Params};
+/// use cuesight::{Error, FrictionLaw, Params};
 ///
 /// assert!(kim_grip(&Params::POOL).is_ok());
-/// let grippy = Params::POOL.with_mu(0.3)?;
+/// // A speed-dependent law with μ(0) = 0.3.
+/// let grippy = Params::POOL.with_friction_law(FrictionLaw::speed_dependent(0.1, 0.2, 1.0)?);
 /// assert!(matches!(
 ///     kim_grip(&grippy),
 ///     Err(Error::OutsideValidity { reason: Reason::Friction, .. })
 /// ));
+/// // A cloth of large friction under a large μ.
+/// let cloth = Params::POOL.with_mu(0.3)?.with_mu_s(0.5)?;
+/// assert!(matches!(
+///     kim_grip(&cloth),
+///     Err(Error::OutsideValidity { reason: Reason::TableFriction, .. })
+/// ));
 /// # Ok::<(), cuesight::Error>(())
 /// ```
 pub fn kim_grip(params: &Params) -> Result<()> {
-    let mu = params.friction_law().largest();
-    if mu > KIM_GRIP_MAX_MU {
+    let law = params.friction_law();
+    let mu = law.largest();
+    if mu > kim_grip_max_mu(&law) {
         return Err(outside(Reason::Friction, mu));
     }
     let mu_mu_s = mu * params.mu_s();
@@ -238,7 +266,8 @@ mod tests {
     }
 
     /// Issue 16's two `KimGrip` cases (27 % of U and 18° of throw off; the object ball
-    /// leaving with 1.49 times the energy) are refused; `Exact` and `Auto` answer them.
+    /// leaving with 1.49 times the energy) are refused (their μ·μ_s is 0.9 and 1; before
+    /// the slide was followed in pieces, μ itself was); `Exact` and `Auto` answer them.
     #[test]
     fn kim_grip_refuses_the_cases_issue_16_quotes() {
         // cuesight collide --speed 1 --cut 30 --spin -30,35,0 --mu 0.9 --mu-s 1 --restitution 0.6
@@ -246,7 +275,7 @@ mod tests {
         let impact = Impact::from_cut_degrees(1.0, 30.0, [-30.0, 35.0, 0.0]).unwrap();
         assert_eq!(
             refusal(&params, &impact, Model::KimGrip),
-            Some((Tier::KimGrip, Reason::Friction, 0.9))
+            Some((Tier::KimGrip, Reason::TableFriction, 0.9))
         );
         // cuesight collide --speed 2 --cut 15 --roll --mu 1 --restitution 1 --mu-s 1
         let params = Params::new(1.0, 1.0, 1.0, 0.028575, 0.17).unwrap();
@@ -257,7 +286,7 @@ mod tests {
         let impact = Impact::rolling([c, s], 0.028575).unwrap();
         assert_eq!(
             refusal(&params, &impact, Model::KimGrip),
-            Some((Tier::KimGrip, Reason::Friction, 1.0))
+            Some((Tier::KimGrip, Reason::TableFriction, 1.0))
         );
         for model in [Model::Exact, Model::Auto { tolerance: 1e-3 }, Model::Ideal] {
             assert_eq!(refusal(&params, &impact, model), None, "{model:?}");
@@ -271,14 +300,20 @@ mod tests {
     fn kim_grip_domain_edges() {
         let impact = Impact::from_cut_degrees(2.0, 30.0, [0.0, 40.0, 0.0]).unwrap();
         let next = |x: f32| f32::from_bits(x.to_bits() + 1);
-        // μ = 0.15 with μ_s 0.5 (μ·μ_s 0.075).
-        let edge = Params::POOL.with_mu(0.15).unwrap().with_mu_s(0.5).unwrap();
+        // μ = 1 with μ_s 0.08 (μ·μ_s 0.08); a constant law above 1 exists only as the
+        // enum's variant (`FrictionLaw::constant` refuses it).
+        let edge = Params::POOL.with_mu(1.0).unwrap().with_mu_s(0.08).unwrap();
         assert_eq!(refusal(&edge, &impact, Model::KimGrip), None);
-        let above = edge.with_mu(next(0.15)).unwrap();
+        let above = edge.with_friction_law(crate::FrictionLaw::Constant(next(1.0)));
         assert_eq!(
             refusal(&above, &impact, Model::KimGrip),
-            Some((Tier::KimGrip, Reason::Friction, next(0.15)))
+            Some((Tier::KimGrip, Reason::Friction, next(1.0)))
         );
+        // Either side of the curved slide's threshold, μ = 0.15 (general path beyond it).
+        for mu in [0.15, next(0.15)] {
+            let edge = Params::POOL.with_mu(mu).unwrap().with_mu_s(0.5).unwrap();
+            assert_eq!(refusal(&edge, &impact, Model::KimGrip), None);
+        }
         // μ·μ_s = 0.125 × 0.64: a power of two times the f32 0.64, which is the f32 0.08.
         let edge = Params::POOL
             .with_mu(0.125)

@@ -84,7 +84,8 @@ fn grid_with(law: FrictionLaw, seed: u64, model: Model) -> Summary {
 #[test]
 fn kim_grip_tracks_the_reference_with_speed_dependent_friction() {
     let marlow = grid_with(FrictionLaw::MARLOW, 31, Model::KimGrip);
-    // The second fit's μ(0) = 0.235 is outside KimGrip's validity domain (μ ≤ 0.15):
+    // The second fit's μ(0) = 0.235 is outside KimGrip's validity domain (a
+    // speed-dependent law's μ(0) ≤ 0.15):
     // refused, typed; Exact answers it.
     let second = FrictionLaw::speed_dependent(0.016, 0.219, 0.691).unwrap();
     let refusal = cuesight::validity::kim_grip(&Params::POOL.with_friction_law(second));

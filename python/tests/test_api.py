@@ -57,7 +57,7 @@ def test_batch_rows_equal_single_calls(model):
     assert len(many) == n
     assert many.throw_deg.dtype == np.float32 and many.cue_v.shape == (n, 3)
     # kim and kim-grip refuse scenes outside their validity domains (kim where the contact
-    # grips, kim-grip above mu 0.15, ...); the other models answer every row.
+    # grips, kim-grip above mu * mu_s 0.08, ...); the other models answer every row.
     assert many.valid.all() or model in ("kim", "kim-grip")
     assert many.valid.any()
     for j in range(n):

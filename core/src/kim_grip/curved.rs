@@ -1,33 +1,42 @@
-//! `KimGrip`'s slide when the object ball is pressed into a cloth of large friction
-//! (`μ_s >` [`CURVED_MIN_MU_S`]): the slip's turn followed in pieces.
+//! `KimGrip`'s slide where the slip turns far: the object ball pressed into a cloth of
+//! large friction (`μ_s >` [`CURVED_MIN_MU_S`]) or a large ball–ball friction (`μ >`
+//! [`CURVED_MIN_MU`]); the slip's turn followed in pieces.
 //!
 //! While it slides the slip obeys `dv/dS = −K v̂` (`S` the friction budget spent, m/s;
-//! `K = diag(k_y, k_z)`, seed eqs. (19), (23) with erratum E1), and the friction impulse
-//! is exactly `J(S) = K⁻¹(v(S) − v₀)`. A pressed object ball has `k_z = 6 − 2.5 μ_s`, so
-//! `k_y/k_z` grows from 7/6 at `μ_s = 0` to 2 at `μ_s = 1`: the slip turns further while
-//! it shrinks, and the parent module's single mid-point direction and its grip threshold
-//! `s* = |K⁻¹v₀|` (within 1.3 % of the sliding path's length up to `μ_s = 0.4`,
-//! `docs/physics.md` §4) lose accuracy near the grip. Against the reference, 400,000
-//! scenes of `KimGrip`'s validity domain with topspin and `μ_s` up to 1 put the single
-//! direction 0.48 % of U off in velocity and 0.72 % in `R ω` (issue 16 item 3 asks
-//! 0.25 % / 0.5 %), all at `μ_s > 0.4` with the contact sliding to 80–95 % of `s*`.
+//! `K = [[k_y, k_yz], [0, k_z]]`, seed eqs. (19), (23) with erratum E1), and the friction
+//! impulse is exactly `J(S) = K⁻¹(v(S) − v₀)`. A pressed object ball has `k_z = 6 − 2.5
+//! μ_s`, so `k_y/k_z` grows from 7/6 at `μ_s = 0` to 2 at `μ_s = 1`: the slip turns
+//! further while it shrinks, and the parent module's single mid-point direction and its
+//! grip threshold `s* = |K⁻¹v₀|` (within 1.3 % of the sliding path's length up to `μ_s =
+//! 0.4`, `docs/physics.md` §4) lose accuracy near the grip. Against the reference,
+//! 400,000 scenes of `KimGrip`'s validity domain with topspin and `μ_s` up to 1 put the
+//! single direction 0.48 % of U off in velocity and 0.72 % in `R ω` (issue 16 item 3
+//! asks 0.25 % / 0.5 %), all at `μ_s > 0.4` with the contact sliding to 80–95 % of `s*`.
+//! With `μ > 0.15` the slide is long beside the impact (the grip comes early in the
+//! normal impulse), and the single direction erred by up to 0.65 % / 1.6 %.
 //!
 //! Here the slide is taken in at most [`PIECES`] pieces. Each piece but the last spends
-//! half the budget that would stop the slip at its start, `|K⁻¹v_k|/2`; the last spends
-//! what is left. Each piece takes the parent module's mid-point direction from its own
-//! starting slip (`α(S)` with `α_b/|v| = 1/(k_y + k_z)` for a diagonal `K`), which meets
-//! that piece's stick impulse at its end, so the pieces add up to `−K⁻¹v₀` exactly when
-//! the last one stops the slip: the impulse is continuous across the grip, and the budget
-//! that stops the slip (the sliding path's length, the grip threshold used instead of
-//! `s*`) is the budget the first pieces spent plus the last one's stick budget. Against
-//! the exact solution of `dv/dS = −K v̂` the pieces' impulse is within 0.5 % of `s*` for
-//! `k_z ≥ 3.5`, every slip direction and every budget (0.33 % measured; the single
-//! direction: 3.4 %; `tests::curved_slide_follows_the_exact_slide`), and their stopping
-//! budget within 1 % of the sliding path's length (0.79 %;
-//! `tests::curved_stop_budget_is_the_sliding_path_length`).
+//! [`PIECE_SHARE`] of the budget that would stop the slip at its start, `|K⁻¹v_k|`; the
+//! last spends what is left. Each piece takes the parent module's mid-point direction
+//! from its own starting slip (`α(S)`, whose end value `α_b` makes the direction
+//! parallel to that piece's stick impulse `K⁻¹v_k`: `α_b = (v × K⁻¹v)/(Kv × K⁻¹v)`,
+//! which for this triangular `K` is `|v|/(k_y + k_z)` whatever `k_yz` and `v`: both
+//! cross products are `z ((k_y − k_z) y + k_yz z)/(k_y k_z)` times 1 and `k_y + k_z`),
+//! which meets that piece's stick impulse at its
+//! end, so the pieces add up to `−K⁻¹v₀` exactly when the last one stops the slip: the
+//! impulse is continuous across the grip, and the budget that stops the slip (the
+//! sliding path's length, the grip threshold used instead of `s*`) is the budget the
+//! first pieces spent plus the last one's stick budget. Against the exact solution of
+//! `dv/dS = −K v̂` the pieces' impulse is within 0.5 % of `s*` for `k_z ≥ 3.5`, every
+//! slip direction and every budget (`tests::curved_slide_follows_the_exact_slide`), and
+//! their stopping budget within 1 % of the sliding path's length
+//! (`tests::curved_stop_budget_is_the_sliding_path_length`).
 //!
-//! A pressed object ball's `K` is always diagonal here: the cue ball's table friction
-//! (`k_yz`) only acts with draw, when the object ball is not pressed.
+//! `k_yz`: with draw, the cue ball's table friction (`μ_ct`, parent module); with the
+//! object ball pressed, the `y` component of its table friction's direction `ĉ` (the
+//! parent module's second pass; `μ_s ĉ_y`: that friction's `y` component moves the
+//! object ball, and with it the contact, along `y`, while its torque, about `x`, leaves
+//! the contact's velocity along `y` and `z` unchanged).
 
 use super::k_y;
 use crate::real::Real;
@@ -37,13 +46,19 @@ use crate::real::Real;
 /// for it. The foundation grid (`μ_s` 0–0.4) stays on the fast path.
 pub(crate) const CURVED_MIN_MU_S: f32 = 0.4;
 
-/// Pieces at most.
-const PIECES: usize = 4;
-/// Share of its stick budget each piece but the last spends.
-const PIECE_SHARE: f32 = 0.5;
+/// μ (a constant law's; a speed-dependent law's `μ(0)` stays at or below it in
+/// `KimGrip`'s domain, `validity`) above which every slide is followed in pieces; the
+/// fast paths decline such `Params` too. Below it the single direction holds the bounds
+/// (`docs/physics.md` §8a).
+pub(crate) const CURVED_MIN_MU: f32 = 0.15;
 
-/// A pressed object ball's slip and compliance, in units where the slip's largest
-/// component is 1 (as the parent module's `TangentialSlip`).
+/// Pieces at most.
+const PIECES: usize = 12;
+/// Share of its stick budget each piece but the last spends.
+const PIECE_SHARE: f32 = 0.25;
+
+/// A slip and its compliance, in units where the slip's largest component is 1 (as the
+/// parent module's `TangentialSlip`).
 #[derive(Clone, Copy)]
 pub(super) struct CurvedSlide<R> {
     /// `v₀ / scale`.
@@ -51,28 +66,31 @@ pub(super) struct CurvedSlide<R> {
     unit_z: R,
     /// `scale` (m/s).
     scale: R,
-    /// `k_z` (`k_y` is 7).
+    /// `k_yz` and `k_z` (`k_y` is 7).
+    k_yz: R,
     k_z: R,
 }
 
 impl<R: Real> CurvedSlide<R> {
-    pub(super) fn new(unit_y: R, unit_z: R, scale: R, k_z: R) -> Self {
+    pub(super) fn new(unit_y: R, unit_z: R, scale: R, k_yz: R, k_z: R) -> Self {
         Self {
             unit_y,
             unit_z,
             scale,
+            k_yz,
             k_z,
         }
     }
 
     /// `K⁻¹ v` for a slip `v` in units of `scale`.
     fn inverse(&self, (y, z): (R, R)) -> (R, R) {
-        (y / k_y::<R>(), z / self.k_z)
+        let i_z = z / self.k_z;
+        ((y - self.k_yz * i_z) / k_y::<R>(), i_z)
     }
 
     /// `K v`.
     fn apply(&self, (y, z): (R, R)) -> (R, R) {
-        (k_y::<R>() * y, self.k_z * z)
+        (k_y::<R>() * y + self.k_yz * z, self.k_z * z)
     }
 
     /// `|K⁻¹ v|` for a slip `v` in units of `scale`: the budget that would stop it were
@@ -84,7 +102,7 @@ impl<R: Real> CurvedSlide<R> {
 
     /// One piece: the friction impulse (units of `scale`) after spending `budget` from
     /// slip `v` whose stick budget is `stick > budget` (the parent module's `α(S)` with
-    /// `f = budget/stick`, `σ = stick/|v|` and `α_b/|v| = 1/(k_y + k_z)`).
+    /// `f = budget/stick`, `σ = stick/|v|` and `α_b/|v| = 1/(k_y + k_z)`, module docs).
     fn piece(&self, slip: (R, R), stick: R, budget: R) -> (R, R) {
         let half = R::of(0.5);
         let (y, z) = slip;

@@ -1,4 +1,6 @@
 use super::*;
+use crate::friction::FrictionLaw;
+use crate::outcome::Regime;
 
 /// A friction law built from the enum's variant bypasses `FrictionLaw::constant`'s
 /// range check; the fast path's guard assumes μ ≤ 1, so such laws take the general
@@ -275,9 +277,10 @@ fn fast_path_agrees_with_the_general_path() {
     let (mut checked, mut regime_differs) = (0, 0);
     let (mut worst32, mut worst64) = (0.0f32, 0.0f32);
     for _ in 0..20_000 {
-        // Inside the validity domain (μ ≤ 0.15, μ·μ_s ≤ 0.08) with μ_s ≤ 0.4, where the
-        // fast path applies (above it the general path follows the slide in pieces).
-        let mu = uniform(1e-4, crate::validity::KIM_GRIP_MAX_MU);
+        // Inside the validity domain (μ·μ_s ≤ 0.08) with μ ≤ 0.15 and μ_s ≤ 0.4, where
+        // the fast path applies (above either the general path follows the slide in
+        // pieces).
+        let mu = uniform(1e-4, crate::kim_grip::CURVED_MIN_MU);
         let restitution = uniform(0.0, 1.0);
         let mu_s = uniform(
             0.0,

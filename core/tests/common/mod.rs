@@ -540,7 +540,13 @@ fn outside_domain(params: &Params, impact: &Impact, model: Model, slack: f64) ->
     match model {
         Model::KimGrip => {
             let mu = params.mu() as f64;
-            mu > 0.15 * (1.0 + slack)
+            // μ ≤ 1 for a constant law (every accepted one), μ(0) ≤ 0.15 for a
+            // speed-dependent one.
+            let max_mu = match params.friction_law() {
+                cuesight::FrictionLaw::SpeedDependent { .. } => 0.15,
+                cuesight::FrictionLaw::Constant(_) => 1.0,
+            };
+            mu > max_mu * (1.0 + slack)
                 || mu * params.mu_s() as f64 > 0.08 * (1.0 + slack)
                 || mu * params.cue_table_friction() as f64 > 0.01 * (1.0 + slack)
                 || (params.cue_table_friction() > 0.0

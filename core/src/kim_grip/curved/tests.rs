@@ -146,7 +146,7 @@ fn curved_slide_follows_the_exact_slide() {
         let k_z = pressed_k_z(mu_s);
         for u0 in pressed_directions() {
             let exact = ExactSlide::new([7.0, k_z], u0);
-            let curved = CurvedSlide::new(u0[0], u0[1], 1.0, k_z);
+            let curved = CurvedSlide::new(u0[0], u0[1], 1.0, 0.0, k_z);
             let single = crate::kim_grip::TangentialSlip::new(u0[0], u0[1], 1.0, 0.0, k_z);
             let stick = single.stick_budget;
             for tenth in 1..=10 {
@@ -187,7 +187,7 @@ fn curved_stop_budget_is_the_sliding_path_length() {
     for mu_s in [0.4, 0.6, 0.8, 1.0] {
         let k_z = pressed_k_z(mu_s);
         for u0 in pressed_directions() {
-            let curved = CurvedSlide::new(u0[0], u0[1], 1.0, k_z);
+            let curved = CurvedSlide::new(u0[0], u0[1], 1.0, 0.0, k_z);
             let length = sliding_path_length([7.0, k_z], u0);
             worst = worst.max((curved.stop_budget() / length - 1.0).abs());
         }
@@ -206,7 +206,7 @@ fn curved_stop_budget_is_the_sliding_path_length() {
 fn curved_slide_meets_the_stick_impulse_at_its_stop() {
     for (y, z, scale) in [(-0.7f64, 0.5, 2.0), (1.0, 0.02, 0.3), (0.01, 1.0, 5.0)] {
         let k_z = pressed_k_z(0.9);
-        let curved = CurvedSlide::new(y, z, scale, k_z);
+        let curved = CurvedSlide::new(y, z, scale, 0.0, k_z);
         let stop = curved.stop_budget();
         let stick = [-y / 7.0 * scale, -z / k_z * scale];
         let below = curved.impulse(stop * (1.0 - 1e-9));
