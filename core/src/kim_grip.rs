@@ -1,10 +1,13 @@
 //! `KimGrip`: the seed's first-order model with a gripping branch (erratum E6) and a
 //! second-order correction of the friction direction. Continuous in the scene (across
-//! the grip, and as μ → 0); in the parameters it changes method at μ = 0.15 and, with
-//! the object ball pressed, at μ_s = 0.4 (the curved slide below), where the answer
-//! moves by up to 0.52 % and 0.55 % of U (max of |Δv| and R|Δω| over 200,000 scenes
-//! either side of each edge; each side within its bound of the reference;
-//! `host-tests/tests/extremes.rs`, `kim_grip_method_edges_move_it_within_its_bound`).
+//! the grip, and as μ, μ_s → 0). It has two methods (below): the fast path's single
+//! mid-point direction, where it holds (constant μ ≤ 0.15, μ_s ≤ 0.4, μ·μ_s ≤ 0.04,
+//! μ_ct = 0), and the general path's slide in pieces everywhere else. Across the edges
+//! of the fast path's region the answer moves by up to 0.44 % of U (max of |Δv| and
+//! R|Δω| over 200,000 scenes either side of each edge, each side within its bound of
+//! the reference; `host-tests/tests/extremes.rs`,
+//! `kim_grip_method_edges_move_it_within_its_bound`), and by 1.2e-5 U on the grid as
+//! μ_ct → 0 (`core/tests/extremes.rs`, `friction_to_zero_is_continuous`).
 //!
 //! Everything is per unit mass (impulses in m/s). Notation: approach speed
 //! `a = U_i cos φ`; tangential slip `v₀ = (v_y0, v_z0)` (seed eq. (11)).
@@ -26,30 +29,33 @@
 //! **Slide.** `K` is anisotropic, so the slip direction rotates during the impact
 //! (seed eq. (21)) and the impulse direction differs from `−v̂₀` at second order. The
 //! exact sliding impulse after a budget `S = μ p` is `K⁻¹(v(S) − v₀)` along the curve of
-//! the invariant (24). We use the direction of `v_m = v₀ − α(S) K v̂₀` with
+//! the invariant (24). The fast path uses the direction of `v_m = v₀ − α(S) K v̂₀` with
 //! `α(S) = S/2 + (|v₀|/(k_y+k_z) − s*/2)(S/s*)²`: the midpoint rule (second order) for
 //! small `S`, and at `S = s*` exactly parallel to `K⁻¹v₀`, so the slide impulse meets
-//! `j_stick` there and the model is continuous across the boundary.
+//! `j_stick` there and the model is continuous across the boundary. The general path
+//! takes the slide in pieces, each by that rule from its own starting slip (`curved`),
+//! whose sliding path's length replaces `s*` as the grip threshold.
 //!
 //! **Normal impulse.** While the object ball slides against the table its friction
-//! `μ_s` times the pressing impulse acts along `−x`, at a rate `ρ = μ μ_s |ĵ_z|` per unit
-//! normal impulse (`|ĵ_z|` at the first-order end of the slide, linear in the spent
-//! budget between its exact values at the start and at the grip, see
-//! `TangentialSlip::pressing_share`), and stops when the contact grips at `p* = s*/μ`. With
-//! `v_x(p) = −a + 2p − ρ min(p, p*)`, the compression end and Stronge's energetic
-//! restitution (`W_restitution = e*² |W_compression|`, seed eq. (37)) give `p_f` in
-//! closed form on each linear piece. The table friction impulse itself, `ρ min(p, p*)`,
-//! is capped by its Coulomb cone `μ_s (−j_z)` (the table's normal impulse on the object
-//! ball is the downward friction `−j_z`; the first-order rate can overshoot it) and
-//! directed along the table-contact slip of the ball–ball impulses alone.
+//! `μ_s` times the pressing impulse acts along `−x`, at a rate `ρ` per unit normal
+//! impulse, and stops when the contact grips at `p*`. The fast path takes one rate, `ρ =
+//! μ μ_s |ĵ_z|` (`|ĵ_z|` at the first-order end of the slide, linear in the spent budget
+//! between its exact values at the start and at the grip); the general path one up to
+//! the first-order compression end and another after it, from the pieces' pressing
+//! (`normal::two_rate_normal_impulse`), times `ĉ_x` (below). With `v_x(p) = −a + 2p −
+//! ρ min(p, p*)`, the compression end and Stronge's energetic restitution
+//! (`W_restitution = e*² |W_compression|`, seed eq. (37)) give `p_f` in closed form on
+//! each linear piece.
 //!
-//! **A cloth of large friction** (`μ_s >` [`CURVED_MIN_MU_S`], the object ball pressed)
-//! **or a large μ** (`μ >` [`CURVED_MIN_MU`]): `k_y/k_z` exceeds 1.4, or the slide is
-//! long, and the single direction and `s*` lose accuracy near the grip, so the general
-//! path follows the slide in pieces and gives the table friction one rate for
-//! compression and another for restitution (`curved`, `normal`), and with the object
-//! ball pressed takes a second pass with its table friction along the table-contact slip
-//! the first found (`docs/physics.md` §4 item 8); the fast paths decline such `Params`.
+//! **Table friction.** The object ball's table contact slides, so its friction is on its
+//! Coulomb cone, `μ_s (−j_z)` (the table's normal impulse on the object ball is the
+//! downward friction `−j_z`). The fast path takes the rate's `ρ min(p, p*)`, capped by
+//! that cone, along the table-contact slip of the ball–ball impulses alone at the end
+//! ([`table_contact_slip`]). The general path takes the cone itself, along the sum of
+//! each piece's pressing along its own table-contact slip (which turns as the slip
+//! does), and with the object ball pressed takes a second pass with that direction `ĉ`
+//! in `K` (`k_z = (2+ν−μ_s ĉ_x)/ν`, `k_yz = μ_s ĉ_y`; `docs/physics.md` §4 item 8). The
+//! fast paths decline every `Params` outside their region.
 
 use crate::error::Result;
 use crate::impact::Impact;
@@ -64,12 +70,12 @@ mod normal;
 mod slip;
 #[cfg(feature = "speed-path")]
 mod speed_path;
-pub(crate) use curved::{CURVED_MIN_MU, CURVED_MIN_MU_S};
+#[cfg(test)]
+mod straight;
+pub(crate) use curved::{CURVED_MIN_MU, CURVED_MIN_MU_MU_S, CURVED_MIN_MU_S};
 pub(crate) use fast_path::MIN_SLIP_SQUARED as FAST_PATH_MIN_SLIP_SQUARED;
 use general::general;
 use normal::{final_normal_impulse, gripped_normal_impulse};
-#[cfg(test)]
-use slip::TangentialSlip;
 
 /// Largest `|v₀|²` ((m/s)²) treated as exact gearing, a slip of 1 pm/s: the fast
 /// path's smallest slip, so that with a constant μ every scene is either on the fast

@@ -88,15 +88,16 @@ impl Derived {
         // `auto_kim_grip_is_the_validity_domain` holds the two together.)
         let largest = friction.largest();
         let inside = (largest <= crate::validity::kim_grip_max_mu(&friction))
-            & (largest * mu_s <= crate::validity::KIM_GRIP_MAX_MU_MU_S)
+            & (largest * mu_s <= crate::validity::kim_grip_max_mu_mu_s(&friction))
             & (largest * mu_ct <= crate::validity::KIM_GRIP_MAX_MU_MU_CT);
-        // A slide with μ above `CURVED_MIN_MU` (`inside` keeps a speed-dependent law's
-        // μ(0) below it), or a pressed object ball's on a cloth of μ_s above
-        // `CURVED_MIN_MU_S`, is followed in pieces, on the general path only
-        // (`kim_grip::curved`). μ ≤ `CURVED_MIN_MU` also keeps the fast path's guard in
-        // the validated range (a law built from the enum's variant skips
-        // `FrictionLaw::constant`'s check; the general path guards every impulse).
-        let straight = mu_s <= crate::kim_grip::CURVED_MIN_MU_S;
+        // The fast paths' region (`kim_grip::curved`): μ ≤ `CURVED_MIN_MU` (`inside` keeps
+        // a speed-dependent law's μ(0) at or below it), μ_s ≤ `CURVED_MIN_MU_S`, μ·μ_s ≤
+        // `CURVED_MIN_MU_MU_S`; the general path follows the slide in pieces everywhere
+        // else. μ ≤ `CURVED_MIN_MU` also keeps the fast path's guard in the validated range
+        // (a law built from the enum's variant skips `FrictionLaw::constant`'s check; the
+        // general path guards every impulse).
+        let straight = (mu_s <= crate::kim_grip::CURVED_MIN_MU_S)
+            & (largest * mu_s <= crate::kim_grip::CURVED_MIN_MU_MU_S);
         let kim_grip_mu = match friction {
             FrictionLaw::Constant(mu)
                 if mu > 0.0

@@ -481,10 +481,15 @@ fn grip_boundary_is_continuous_in_every_parameter() {
 }
 
 /// `μ → 0`: the frictionless result (μ = 0) and the smallest subnormal μ agree to 1e-6 U
-/// for every model and every grid scene; so do μ_s, μ_ct → 0.
+/// for every model and every grid scene; so do μ_s, μ_ct → 0, except `KimGrip` at
+/// μ_ct → 0: any μ_ct > 0 takes its general path (the slide in pieces, `docs/physics.md`
+/// §4 item 8) where μ_ct = 0 may take its fast path (the single mid-point direction),
+/// a change of method held to twice its declared bound (each side is within the bound
+/// of the reference) and recorded.
 #[test]
 fn friction_to_zero_is_continuous() {
     let tiny = f32::from_bits(1);
+    let mut kim_grip_cue_table = 0.0f32;
     for case in scenes(300, 7) {
         let p = case.params;
         for (name, zero, small) in [
@@ -506,10 +511,26 @@ fn friction_to_zero_is_continuous() {
                     continue;
                 };
                 let jump = max_difference(&a, &b, p.radius()) / case.impact.speed();
+                // (`Auto` takes `KimGrip` at a tolerance of 5e-3 or more.)
+                if name == "μ_ct" && matches!(model, Model::KimGrip | Model::Auto { .. }) {
+                    if model == Model::KimGrip {
+                        kim_grip_cue_table = kim_grip_cue_table.max(jump);
+                    }
+                    assert!(
+                        jump < 2.0 * cuesight::KIM_GRIP_DECLARED_BOUND,
+                        "{name} {model:?}: {jump:e} U in {case:?}"
+                    );
+                    continue;
+                }
                 assert!(jump <= 1e-6, "{name} {model:?}: {jump:e} U in {case:?}");
             }
         }
     }
+    cuesight_figures::record!(
+        "reliability-extremes-kimgrip-cue-table-to-zero",
+        "{:.1e}",
+        kim_grip_cue_table
+    );
 }
 
 /// `KimGrip` is continuous through zero slip (exact gearing ± a few ulps of side spin)

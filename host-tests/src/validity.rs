@@ -3,7 +3,7 @@
 //! checked for consistency, not a failure.
 
 use cuesight::validity::{
-    kim_grip_max_mu, Reason, Tier, KIM_GRIP_MAX_MU_MU_CT, KIM_GRIP_MAX_MU_MU_S,
+    kim_grip_max_mu, kim_grip_max_mu_mu_s, Reason, Tier, KIM_GRIP_MAX_MU_MU_CT,
     KIM_GRIP_MIN_RESTITUTION,
 };
 use cuesight::{collide, Error, Impact, Model, Outcome, Params};
@@ -29,7 +29,8 @@ pub fn declared(params: &Params, model: Model, error: &Error) -> bool {
         Reason::Grips => value >= 1.0, // an index just above 1 may round to 1.0 in f32
         Reason::Friction => value == params.mu() && value > kim_grip_max_mu(&params.friction_law()),
         Reason::TableFriction => {
-            value == params.mu() * params.mu_s() && value > KIM_GRIP_MAX_MU_MU_S
+            value == params.mu() * params.mu_s()
+                && value > kim_grip_max_mu_mu_s(&params.friction_law())
         }
         Reason::CueTableFriction => {
             value == params.mu() * params.cue_table_friction() && value > KIM_GRIP_MAX_MU_MU_CT

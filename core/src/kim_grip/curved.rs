@@ -1,6 +1,7 @@
-//! `KimGrip`'s slide where the slip turns far: the object ball pressed into a cloth of
-//! large friction (`μ_s >` [`CURVED_MIN_MU_S`]) or a large ball–ball friction (`μ >`
-//! [`CURVED_MIN_MU`]); the slip's turn followed in pieces.
+//! `KimGrip`'s slide on the general path (every scene the fast paths decline: their
+//! region ends at `μ >` [`CURVED_MIN_MU`], `μ_s >` [`CURVED_MIN_MU_S`], `μ·μ_s >`
+//! [`CURVED_MIN_MU_MU_S`]); the slip's turn followed in pieces, and the object ball's
+//! table friction along the table-contact slip the pieces turn through.
 //!
 //! While it slides the slip obeys `dv/dS = −K v̂` (`S` the friction budget spent, m/s;
 //! `K = [[k_y, k_yz], [0, k_z]]`, seed eqs. (19), (23) with erratum E1), and the friction
@@ -13,7 +14,9 @@
 //! single direction 0.48 % of U off in velocity and 0.72 % in `R ω` (issue 16 item 3
 //! asks 0.25 % / 0.5 %), all at `μ_s > 0.4` with the contact sliding to 80–95 % of `s*`.
 //! With `μ > 0.15` the slide is long beside the impact (the grip comes early in the
-//! normal impulse), and the single direction erred by up to 0.65 % / 1.6 %.
+//! normal impulse), and the single direction erred by up to 0.65 % / 1.6 %; with `μ·μ_s`
+//! up to 0.2, its table friction (a first-order rate along the end slip) by up to 0.5 %
+//! / 1.1 % (`docs/physics.md` §4 item 8).
 //!
 //! Here the slide is taken in at most [`PIECES`] pieces. Each piece but the last spends
 //! [`PIECE_SHARE`] of the budget that would stop the slip at its start, `|K⁻¹v_k|`; the
@@ -41,16 +44,20 @@
 use super::k_y;
 use crate::real::Real;
 
-/// `μ_s` above which a pressed object ball's slide is followed in pieces (`k_y/k_z >
-/// 1.4`); the fast paths decline such `Params` (`Params::derived`), so they pay nothing
-/// for it. The foundation grid (`μ_s` 0–0.4) stays on the fast path.
+/// The fast paths' region (the single mid-point direction; `Params::derived`), outside
+/// which every scene takes the general path's pieces: `μ_s` at most this (`k_y/k_z ≤
+/// 1.4` with the object ball pressed). The foundation grid (`μ_s` 0–0.4) is inside.
 pub(crate) const CURVED_MIN_MU_S: f32 = 0.4;
 
-/// μ (a constant law's; a speed-dependent law's `μ(0)` stays at or below it in
-/// `KimGrip`'s domain, `validity`) above which every slide is followed in pieces; the
-/// fast paths decline such `Params` too. Below it the single direction holds the bounds
-/// (`docs/physics.md` §8a).
+/// ... μ at most this (a constant law's; a speed-dependent law's `μ(0)` stays at or
+/// below it in `KimGrip`'s domain, `validity`): beyond it the single direction erred by
+/// up to 0.65 % of U (`docs/physics.md` §4 item 8).
 pub(crate) const CURVED_MIN_MU: f32 = 0.15;
+
+/// ... and `μ·μ_s` at most this: the single direction's table friction, at a rate fixed
+/// from the first-order budget, held the bound only to here near μ = 0.15, μ_s = 0.4
+/// (13 of 400,000 scenes at μ 0.14–0.15, μ_s 0.35–0.4 up to 0.553 % in R ω, before).
+pub(crate) const CURVED_MIN_MU_MU_S: f32 = 0.04;
 
 /// Pieces at most.
 const PIECES: usize = 12;
@@ -126,23 +133,29 @@ impl<R: Real> CurvedSlide<R> {
     /// The budget (m/s) that stops the slip, the sliding path's length: the first
     /// `PIECES − 1` pieces' budgets and the last one's stick budget.
     pub(super) fn stop_budget(&self) -> R {
-        self.march(R::of(f32::INFINITY)).1
+        self.march(R::of(f32::INFINITY), R::ZERO).spent
     }
 
     /// The friction impulse `(j_y, j_z)` (m/s) on the object ball after a budget
     /// `budget` (m/s) below [`Self::stop_budget`]; at or above it (rounding), the stick
     /// impulse `−K⁻¹v₀`.
     pub(super) fn impulse(&self, budget: R) -> (R, R) {
-        self.march(budget).0
+        self.march(budget, R::ZERO).impulse
     }
 
     /// The pieces up to `budget` (m/s): the impulse (m/s) and the budget spent, which
     /// is where the slip stopped if it did (`budget = ∞`: always, in the last piece).
+    /// With the normal impulse `normal_per_budget` times the budget spent, also the
+    /// object ball's table friction direction (unnormalised): each piece's pressing
+    /// `−Δj_z` along the table-contact slip `c_free = (p − j_z/ν, j_y)` at its middle
+    /// (the parent module's `table_contact_slip`), which turns as the slip does.
     #[inline(never)]
-    fn march(&self, budget: R) -> ((R, R), R) {
+    pub(super) fn march(&self, budget: R, normal_per_budget: R) -> Marched<R> {
         let target = budget / self.scale;
+        let half = R::of(0.5);
         let mut slip = (self.unit_y, self.unit_z);
         let (mut j_y, mut j_z, mut spent) = (R::ZERO, R::ZERO, R::ZERO);
+        let mut table = (R::ZERO, R::ZERO);
         for piece in 0..PIECES {
             let left = target - spent;
             if left <= R::ZERO {
@@ -154,22 +167,50 @@ impl<R: Real> CurvedSlide<R> {
             } else {
                 left
             };
-            if stick <= budget {
-                // Stopped: the pieces so far and this one's stick impulse add up to −K⁻¹v₀.
-                let (i_y, i_z) = self.inverse((self.unit_y, self.unit_z));
-                return (
-                    (-i_y * self.scale, -i_z * self.scale),
-                    (spent + stick) * self.scale,
-                );
+            let stops = stick <= budget;
+            let (impulse, step) = if stops {
+                // The rest of the stick impulse: the pieces add up to −K⁻¹v₀.
+                let (i_y, i_z) = self.inverse(slip);
+                ((-i_y, -i_z), stick)
+            } else {
+                (self.piece(slip, stick, budget), budget)
+            };
+            let (mid_y, mid_z) = (j_y + half * impulse.0, j_z + half * impulse.1);
+            let c_x = (spent + half * step) * normal_per_budget - R::of(2.5) * mid_z;
+            let length = R::sqrt(c_x * c_x + mid_y * mid_y);
+            if length > R::ZERO {
+                let weight = -impulse.1 / length;
+                table = (table.0 + weight * c_x, table.1 + weight * mid_y);
             }
-            let impulse = self.piece(slip, stick, budget);
+            if stops {
+                let (i_y, i_z) = self.inverse((self.unit_y, self.unit_z));
+                return Marched {
+                    impulse: (-i_y * self.scale, -i_z * self.scale),
+                    spent: (spent + stick) * self.scale,
+                    table,
+                };
+            }
             slip = self.advance(slip, impulse);
             j_y = j_y + impulse.0;
             j_z = j_z + impulse.1;
             spent = spent + budget;
         }
-        ((j_y * self.scale, j_z * self.scale), spent * self.scale)
+        Marched {
+            impulse: (j_y * self.scale, j_z * self.scale),
+            spent: spent * self.scale,
+            table,
+        }
     }
+}
+
+/// What [`CurvedSlide::march`] found.
+pub(super) struct Marched<R> {
+    /// The friction impulse `(j_y, j_z)` (m/s).
+    pub impulse: (R, R),
+    /// The budget spent (m/s).
+    pub spent: R,
+    /// The object ball's table friction direction, unnormalised (any unit).
+    pub table: (R, R),
 }
 
 #[cfg(test)]

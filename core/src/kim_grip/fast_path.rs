@@ -129,7 +129,7 @@ fn slide<R: Real, const OBJECT_PRESSED: bool>(
         );
         (R::ZERO, normal, slides, false)
     } else {
-        // ρ = μ μ_s |ĵ_z| (see `pressing_share` in the parent module): |ĵ_z| is v̂₀'s
+        // ρ = μ μ_s |ĵ_z| (`docs/physics.md` §4 item 5): |ĵ_z| is v̂₀'s
         // z component at f = 0 and the stick impulse's at f = 1, interpolated at the
         // first-order end of the slide, f = min((1+e)a/2 / p*, 1). Both are > 0 here.
         let mu_mu_s = if R::SINGLE {

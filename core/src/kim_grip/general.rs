@@ -1,10 +1,10 @@
 //! `KimGrip`'s general path: every scene of its validity domain the fast paths decline
 //! (parent module docs; `docs/physics.md` §4 items 3–8).
 
-use super::curved::{self, CURVED_MIN_MU, CURVED_MIN_MU_S};
+use super::curved;
 use super::normal::two_rate_normal_impulse;
 use super::slip::TangentialSlip;
-use super::{initial_slip, nu, table_contact_slip, GEARING_SLIP_SQUARED};
+use super::{initial_slip, nu, GEARING_SLIP_SQUARED};
 use crate::error::Result;
 use crate::friction::FrictionLaw;
 use crate::impact::Impact;
@@ -95,16 +95,10 @@ pub(super) fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
             return Outcome::without_friction(params, impact, frictionless_normal, false);
         }
         let slip_speed = slip.unit_norm * scale;
-        // A large μ, or a pressed object ball on a cloth of large friction: the slip's
-        // turn followed in pieces (`curved`), whose sliding path's length replaces s* as
-        // the grip threshold.
-        let curved = (law.largest() > CURVED_MIN_MU
-            || (object_pressed && params.mu_s() > CURVED_MIN_MU_S))
-            .then(|| curved::CurvedSlide::new(slip.unit_y, slip.unit_z, scale, k_yz, k_z));
-        let stick_budget = match &curved {
-            Some(curved) => curved.stop_budget(),
-            None => slip.stick_budget,
-        };
+        // The slide in pieces (`curved`), whose sliding path's length replaces s* as the
+        // grip threshold.
+        let curved = curved::CurvedSlide::new(slip.unit_y, slip.unit_z, scale, k_yz, k_z);
+        let stick_budget = curved.stop_budget();
         // Effective compliance along the slip path, k̄ = |v₀| / s* (see `friction`).
         let compliance = slip_speed / stick_budget;
         // p*: the normal impulse at which the slip would stop (may be +inf for tiny μ).
@@ -127,84 +121,65 @@ pub(super) fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
         // table-friction rate ρ (table impulse per unit normal impulse while sliding).
         let first_budget = budget_after(frictionless_normal);
         let first_span = R::min(frictionless_normal, grip_normal);
-        // The table friction's rate (table impulse along x per unit normal impulse) up to
-        // the end of compression and after it.
-        let (compression_rate, restitution_rate) = match &curved {
-            None => {
-                let first_share_z = slip.pressing_share(first_budget);
-                // One rate while sliding: the object ball's table friction (topspin) holds
-                // it back, the cue ball's (draw) slows the approach.
-                let table_rate = if first_span <= R::ZERO {
-                    // The slip stops at once (or no impact at all): no span for a rate.
-                    R::ZERO
-                } else {
-                    table_mu * first_share_z * first_budget / first_span
-                };
-                (table_rate, table_rate)
-            }
-            Some(curved) => {
-                // While the object ball's table contact slides its friction is μ_s times the
-                // pressing impulse |J_z(S)|, which grows faster as the slip turns towards z:
-                // one rate up to the first-order compression end a/2, another after it, from
-                // the pieces' |J_z| there and at the first-order end.
-                let pressing = |budget: R| -> R {
-                    if budget >= stick_budget {
-                        R::abs(slip.stick_z)
-                    } else {
-                        R::abs(curved.impulse(budget).1)
-                    }
-                };
-                let compression_span = R::min(half * approach, grip_normal);
-                let compression_pressing = pressing(budget_after(compression_span));
-                let compression_rate = if compression_span > R::ZERO {
-                    table_mu * compression_pressing / compression_span
-                } else {
-                    R::ZERO
-                };
-                let rest_span = first_span - compression_span;
-                let restitution_rate = if rest_span > R::of(1e-3) * first_span {
-                    // Pressing per unit normal impulse: at least 0, at most the fastest μ.
-                    let rate = (pressing(first_budget) - compression_pressing) / rest_span;
-                    table_mu * R::min(R::max(rate, R::ZERO), R::of(law.largest()))
-                } else {
-                    compression_rate
-                };
-                (compression_rate, restitution_rate)
+        // The table friction's rate (table impulse per unit normal impulse) up to the end
+        // of compression and after it. While the pressed ball's table contact slides its
+        // friction is its μ times the pressing impulse |J_z(S)|, which grows faster as the
+        // slip turns towards z: one rate up to the first-order compression end a/2,
+        // another after it, from the pieces' |J_z| there and at the first-order end.
+        let pressing = |budget: R| -> R {
+            if budget >= stick_budget {
+                R::abs(slip.stick_z)
+            } else {
+                R::abs(curved.impulse(budget).1)
             }
         };
-        let (normal, slides, compression_end) = two_rate_normal_impulse(
+        let compression_span = R::min(half * approach, grip_normal);
+        let compression_pressing = pressing(budget_after(compression_span));
+        let compression_rate = if compression_span > R::ZERO {
+            table_mu * compression_pressing / compression_span
+        } else {
+            R::ZERO
+        };
+        let rest_span = first_span - compression_span;
+        let restitution_rate = if rest_span > R::of(1e-3) * first_span {
+            // Pressing per unit normal impulse: at least 0, at most the fastest μ.
+            let rate = (pressing(first_budget) - compression_pressing) / rest_span;
+            table_mu * R::min(R::max(rate, R::ZERO), R::of(law.largest()))
+        } else {
+            compression_rate
+        };
+        // Only the table friction's x component (`ĉ_x` of its size) slows the approach.
+        let (normal, slides, _) = two_rate_normal_impulse(
             approach,
             restitution,
-            compression_rate,
-            restitution_rate,
+            compression_rate * dir_x,
+            restitution_rate * dir_x,
             grip_normal,
         );
         let span = R::min(normal, grip_normal);
-        let pressed_table = compression_rate * R::min(span, compression_end)
-            + restitution_rate * R::max(span - compression_end, R::ZERO);
-
+        let budget_end = if slides {
+            budget_after(normal)
+        } else {
+            stick_budget
+        };
+        // The pieces to the end of the slide: the friction impulse, and the direction of
+        // a pressed object ball's table friction (each piece's pressing along its own
+        // table-contact slip, which turns as the slip does).
+        let marched = curved.march(budget_end, span / budget_end);
         let (j_y, j_z, regime) = if slides {
-            let budget = budget_after(normal);
-            let (j_y, j_z) = match &curved {
-                Some(curved) => curved.impulse(budget),
-                None => {
-                    let (dir_y, dir_z) = slip.friction_direction(budget);
-                    (budget * dir_y, budget * dir_z)
-                }
-            };
+            let (j_y, j_z) = marched.impulse;
             (j_y, j_z, Regime::Sliding)
         } else {
             (slip.stick_y, slip.stick_z, Regime::Gripping)
         };
         let (table, cue_table_x, cue_table_y) = if object_pressed {
-            // Coulomb's cone at the object ball's table contact: its friction impulse is at
-            // most μ_s times the table's normal impulse on it, which (per unit mass, m/s) is
-            // the downward ball–ball friction −j_z (j_z ≤ 0 here; the max takes rounding
-            // out). The rate ρ, fixed from the first-order budget, can put ρ·min(p, p*)
-            // above that (issue 16 item 3: the invariants suite's object-ball table cone);
-            // the cone caps it.
+            // The object ball's table contact slides: its friction is μ_s times the
+            // table's normal impulse on it, which (per unit mass, m/s) is the downward
+            // ball–ball friction −j_z (j_z ≤ 0 here; the max takes rounding out), on
+            // Coulomb's cone. (The rates above only time it for the normal impulse;
+            // their sum, from the first-order budget, fell up to 2 % short of it.)
             let cone = R::of(params.mu_s()) * R::max(-j_z, R::ZERO);
-            (R::min(pressed_table, cone), R::ZERO, R::ZERO)
+            (cone, R::ZERO, R::ZERO)
         } else {
             // Pressing impulse on the cue ball = the upward friction impulse on the object.
             let pressing = R::max(j_z, R::ZERO);
@@ -214,15 +189,20 @@ pub(super) fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
                 -mu_ct * pressing * cue_dir_y,
             )
         };
-        if curved.is_some() && object_pressed && core::mem::take(&mut first_pass) {
-            let (c_x, c_y) = table_contact_slip(span, j_y, j_z);
-            let length = R::sqrt(c_x * c_x + c_y * c_y);
-            if length > R::ZERO {
-                table_direction = (c_x / length, c_y / length);
+        let (t_x, t_y) = marched.table;
+        let length = R::sqrt(t_x * t_x + t_y * t_y);
+        let (table_x, table_y) = if object_pressed && length > R::ZERO {
+            let (c_x, c_y) = (t_x / length, t_y / length);
+            if core::mem::take(&mut first_pass) {
+                table_direction = (c_x, c_y);
                 continue;
             }
-        }
-        let (table_x, table_y) = table_friction_components(table, span, j_y, j_z);
+            (table * c_x, -table * c_y)
+        } else {
+            // No table friction, or no slip at the table contact: no direction (the
+            // seed's −x, eq. (7)).
+            (table, R::ZERO)
+        };
         let impulses = SpecificImpulses {
             normal,
             friction_y: j_y,
@@ -268,24 +248,5 @@ impl<R: Real> Budget<R> {
                 }
             }
         }
-    }
-}
-
-/// Split the table friction `table` (m/s) on the pressed object ball along its
-/// table-contact slip `c = V + Ω × (−R ẑ)` (first-principles Coulomb direction; the seed's
-/// eq. (7) takes `c ∥ x̂`). At the end of the pressing span every impulse has grown
-/// roughly in proportion, so the final `c` gives the mean direction, that of the slip
-/// the ball–ball impulses alone give (see [`table_contact_slip`]). Returns the `−x`
-/// magnitude and the `y` component of the table impulse.
-#[inline(always)]
-fn table_friction_components<R: Real>(table: R, span: R, j_y: R, j_z: R) -> (R, R) {
-    let (slip_x, slip_y) = table_contact_slip(span, j_y, j_z);
-    let length = R::sqrt(slip_x * slip_x + slip_y * slip_y);
-    if length > R::ZERO {
-        let scale = table / length;
-        (scale * slip_x, -scale * slip_y)
-    } else {
-        // No slip at the table contact: no direction; the seed's −x (eq. (7)).
-        (table, R::ZERO)
     }
 }

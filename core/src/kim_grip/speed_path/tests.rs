@@ -1,13 +1,14 @@
 use super::*;
 use crate::friction::FrictionLaw;
-use crate::kim_grip::{general, speed_path};
+use crate::kim_grip::speed_path;
+use crate::kim_grip::straight::general;
 
-/// The speed-dependent fast path (`speed_path`, f32) against the general path's Newton
-/// solution of the same equations in f64, on 20,000 scenes with laws `μ(v) = a + b e^{−cv}`
+/// The speed-dependent fast path (`speed_path`, f32) against the straight general path's
+/// Newton solution of the same equations in f64 (`straight`, its test oracle), on 20,000 scenes with laws `μ(v) = a + b e^{−cv}`
 /// inside `KimGrip`'s validity domain.
 #[cfg(feature = "speed-path")]
 #[test]
-fn speed_path_agrees_with_the_general_path() {
+fn speed_path_agrees_with_the_straight_general_path() {
     extern crate std;
     let mut uniform = crate::kim_grip::tests::uniform_from(0x2545_f491_4f6c_dd1d);
     let (mut checked, mut regime_differs, mut sliding) = (0, 0, 0);
@@ -19,7 +20,7 @@ fn speed_path_agrees_with_the_general_path() {
         let law = FrictionLaw::speed_dependent(a, b, c).unwrap();
         let mu_s = uniform(
             0.0,
-            (crate::validity::KIM_GRIP_MAX_MU_MU_S / (a + b)).min(crate::kim_grip::CURVED_MIN_MU_S),
+            (crate::kim_grip::CURVED_MIN_MU_MU_S / (a + b)).min(crate::kim_grip::CURVED_MIN_MU_S),
         );
         let params = Params::new(0.05, uniform(0.0, 1.0), mu_s, 0.028575, 0.17)
             .unwrap()
