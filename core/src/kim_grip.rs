@@ -70,7 +70,7 @@ mod normal;
 mod slip;
 #[cfg(feature = "speed-path")]
 mod speed_path;
-#[cfg(test)]
+#[cfg(any(test, feature = "speed-path"))]
 mod straight;
 pub(crate) use curved::{CURVED_MIN_MU, CURVED_MIN_MU_MU_S, CURVED_MIN_MU_S};
 pub(crate) use fast_path::MIN_SLIP_SQUARED as FAST_PATH_MIN_SLIP_SQUARED;
@@ -108,16 +108,21 @@ pub(crate) fn collide<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
     }
 }
 
-/// Every scene the constant-μ fast path declines: TP A.14's speed-dependent μ(v) in
-/// closed form (`speed_path`, f32 only), else the general path. Not inlined, so that
-/// the constant-μ fast path's code stays as it was without it.
+/// Every scene the constant-μ fast path declines: in the speed-dependent fast path's
+/// region, TP A.14's μ(v) in closed form (`speed_path`, f32 only) and, in `f64` or where
+/// it declines, the single-direction general path whose equations it specialises
+/// (`straight`: `f32` and `f64` answer by one method); else the general path. Not
+/// inlined, so that the constant-μ fast path's code stays as it was without it.
 #[cfg(feature = "speed-path")]
 #[inline(never)]
 fn beyond_fast_path<R: Real>(params: &Params, impact: &Impact) -> Result<Outcome> {
-    if R::SINGLE {
-        if let Some(outcome) = speed_path::collide(params, impact) {
-            return Ok(outcome);
+    if params.derived().kim_grip_speed_law.is_some() {
+        if R::SINGLE {
+            if let Some(outcome) = speed_path::collide(params, impact) {
+                return Ok(outcome);
+            }
         }
+        return straight::general::<R>(params, impact);
     }
     general::<R>(params, impact)
 }

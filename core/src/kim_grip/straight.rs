@@ -3,10 +3,13 @@
 //! The constant-μ fast path and the speed-dependent fast path evaluate these equations
 //! specialised; this unspecialised evaluation (in `f32` and `f64`) is their test oracle
 //! (`tests::fast_path_agrees_with_the_straight_general_path`,
-//! `speed_path::tests::speed_path_agrees_with_the_straight_general_path`). Test-only: the
-//! general path itself now takes the pieces everywhere (`general`, `curved`).
+//! `speed_path::tests::speed_path_agrees_with_the_straight_general_path`), and with the
+//! `speed-path` feature the speed path's method in `f64` and where it declines (so that
+//! both precisions answer alike). Otherwise test-only: the general path itself takes the
+//! pieces everywhere (`general`, `curved`).
 
 use super::normal::two_rate_normal_impulse;
+use super::slip::TangentialSlip;
 use super::{initial_slip, k_y, nu, table_contact_slip, GEARING_SLIP_SQUARED};
 use crate::error::Result;
 use crate::friction::FrictionLaw;
@@ -205,33 +208,23 @@ struct StraightSlip<R> {
 
 impl<R: Real> StraightSlip<R> {
     fn new(slip_y: R, slip_z: R, scale: R, k_yz: R, k_z: R) -> Self {
-        let unit_y = slip_y / scale;
-        let unit_z = slip_z / scale;
-        let unit_norm = R::sqrt(unit_y * unit_y + unit_z * unit_z);
-        // K⁻¹ u, u = v₀ / scale.
-        let inverse_z = unit_z / k_z;
-        let inverse_y = (unit_y - k_yz * inverse_z) / k_y::<R>();
-        let unit_stick = R::sqrt(inverse_y * inverse_y + inverse_z * inverse_z);
-        // α_b/|v₀| = cross(u, K⁻¹u) / cross(K u, K⁻¹u); 1/(k_y + k_z) when K is
-        // diagonal, and any value when v₀ is an eigenvector (the direction cannot turn).
-        let (ku_y, ku_z) = (k_y::<R>() * unit_y + k_yz * unit_z, k_z * unit_z);
-        let numerator = unit_y * inverse_z - unit_z * inverse_y;
-        let denominator = ku_y * inverse_z - ku_z * inverse_y;
-        let boundary_alpha_per_norm = if R::abs(denominator) > R::of(1e-12) {
-            numerator / denominator
-        } else {
-            R::ONE / (k_y::<R>() + k_z)
-        };
+        let base = TangentialSlip::new(slip_y, slip_z, scale, k_yz, k_z);
+        let (unit_y, unit_z, unit_norm) = (base.unit_y, base.unit_z, base.unit_norm);
+        // |K⁻¹u| and (K⁻¹u)_z, u = v₀ / scale.
+        let unit_stick = base.stick_budget / scale;
+        let inverse_z = -base.stick_z / scale;
         Self {
             unit_y,
             unit_z,
             k_yz,
             k_z,
             unit_norm,
-            stick_y: -inverse_y * scale,
-            stick_z: -inverse_z * scale,
-            stick_budget: unit_stick * scale,
-            boundary_alpha_per_norm,
+            stick_y: base.stick_y,
+            stick_z: base.stick_z,
+            stick_budget: base.stick_budget,
+            // α_b/|v₀| = cross(u, K⁻¹u) / cross(K u, K⁻¹u), 1/(k_y + k_z) for this
+            // triangular K (`curved`'s module docs).
+            boundary_alpha_per_norm: R::ONE / (k_y::<R>() + k_z),
             stick_per_norm: unit_stick / unit_norm,
             start_share_z: R::abs(unit_z) / unit_norm,
             stick_share_z: R::abs(inverse_z) / unit_stick,
