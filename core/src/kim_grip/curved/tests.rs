@@ -137,9 +137,9 @@ fn pressed_directions() -> impl Iterator<Item = [f64; 2]> {
 
 /// The pieces against the exact slide at `μ_s` 0.4–1 (`k_y/k_z` 1.4–2), every pressed
 /// slip direction, budgets from a tenth of the stopping budget up to the stop: the
-/// impulse within 0.5 % of `|K⁻¹u₀|` (measured 0.33 %), where the fast path's single
-/// mid-point direction (one piece) is up to 3.4 % off (both recorded for `docs/physics.md`
-/// §4).
+/// impulse within 0.5 % of `|K⁻¹u₀|` (measured 0.06 %; 0.33 % with four halves), where
+/// the fast path's single mid-point direction (one piece) is up to 3.4 % off (both
+/// recorded for `docs/physics.md` §4).
 #[test]
 fn curved_slide_follows_the_exact_slide() {
     let (mut pieces_worst, mut single_worst) = (0.0f64, 0.0f64);
@@ -180,8 +180,8 @@ fn curved_slide_follows_the_exact_slide() {
 }
 
 /// The pieces' stopping budget (the grip threshold of the curved slide) against the
-/// sliding path's length: within 1 % at `μ_s` 0.4–1 (measured 0.8 %), where
-/// `s* = |K⁻¹u₀|` is up to 4.3 % short.
+/// sliding path's length: within 1 % at `μ_s` 0.4–1 (measured 0.23 %; 0.79 % with four
+/// halves), where `s* = |K⁻¹u₀|` is up to 4.3 % short.
 #[test]
 fn curved_stop_budget_is_the_sliding_path_length() {
     let mut worst = 0.0f64;
