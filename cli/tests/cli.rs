@@ -248,7 +248,7 @@ fn scenes_outside_a_models_domain_are_refused() {
     let line = rejected(&grippy, 1);
     assert_eq!(
         line.trim_end(),
-        "error: kim-grip is valid only where mu * mu_s <= 0.2 (a speed-dependent law: 0.08) (here 0.9); use exact or auto"
+        "error: kim-grip is valid only where mu * mu_s <= 0.2 (a speed-dependent law: mu(0) * mu_s) (here 0.9); use exact or auto"
     );
     for model in ["exact", "auto"] {
         let mut args = grippy.to_vec();

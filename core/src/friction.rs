@@ -4,7 +4,8 @@
 //!
 //! While the contact slides, the slip speed falls at `d|v|/dp = −k̄ μ(|v|)` per unit
 //! specific normal impulse (m/s per m/s), where `k̄` is the effective slip compliance
-//! along the path (`kim_grip` uses `k̄ = |v₀| / s*`). Hence the normal impulse that takes
+//! along the path (`kim_grip`'s fast paths use `k̄ = |v₀| / s*`, its general path each
+//! piece's own, `kim_grip::budget`). Hence the normal impulse that takes
 //! the slip from `v₀` to `v` is `(G(v₀) − G(v)) / k̄` with `G' = 1/μ`, and the friction
 //! budget spent meanwhile, `∫ μ dp`, is exactly `(v₀ − v) / k̄`. For the exponential law
 //! `G(v) = [v + ln(a + b e^{−cv}) / c] / a`.

@@ -63,10 +63,12 @@ use crate::outcome::Outcome;
 use crate::params::Params;
 use crate::real::Real;
 
+mod budget;
 mod curved;
 mod fast_path;
 mod general;
 mod normal;
+#[cfg(any(test, feature = "speed-path"))]
 mod slip;
 #[cfg(feature = "speed-path")]
 mod speed_path;

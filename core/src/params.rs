@@ -87,11 +87,11 @@ impl Derived {
         // and does not arise for the fast paths, which need μ_ct = 0; the test
         // `auto_kim_grip_is_the_validity_domain` holds the two together.)
         let largest = friction.largest();
-        let inside = (largest <= crate::validity::kim_grip_max_mu(&friction))
-            & (largest * mu_s <= crate::validity::kim_grip_max_mu_mu_s(&friction))
+        let inside = (largest <= crate::validity::KIM_GRIP_MAX_MU)
+            & (largest * mu_s <= crate::validity::KIM_GRIP_MAX_MU_MU_S)
             & (largest * mu_ct <= crate::validity::KIM_GRIP_MAX_MU_MU_CT);
-        // The fast paths' region (`kim_grip::curved`): μ ≤ `CURVED_MIN_MU` (`inside` keeps
-        // a speed-dependent law's μ(0) at or below it), μ_s ≤ `CURVED_MIN_MU_S`, μ·μ_s ≤
+        // The fast paths' region (`kim_grip::curved`): μ ≤ `CURVED_MIN_MU` (a
+        // speed-dependent law's μ(0)), μ_s ≤ `CURVED_MIN_MU_S`, μ·μ_s ≤
         // `CURVED_MIN_MU_MU_S`; the general path follows the slide in pieces everywhere
         // else. μ ≤ `CURVED_MIN_MU` also keeps the fast path's guard in the validated range
         // (a law built from the enum's variant skips `FrictionLaw::constant`'s check; the
@@ -118,6 +118,7 @@ impl Derived {
             FrictionLaw::SpeedDependent { a, b, c }
                 if a >= 1e-6
                     && b > 0.0
+                    && a + b <= crate::kim_grip::CURVED_MIN_MU
                     && c > 0.0
                     && c <= 100.0
                     && mu_ct == 0.0

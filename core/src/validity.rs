@@ -10,7 +10,7 @@
 //! |---|---|---|
 //! | `Ideal` | everywhere (frictionless and elastic by definition: every invariant holds) | — |
 //! | `Kim` | the contact slides for the whole impact: gripping index `g = μ p₀ / s* ≤ 1` | [`Reason::Grips`] |
-//! | `KimGrip` | `μ ≤` [`KIM_GRIP_MAX_MU`] (a speed-dependent law: `μ(0) ≤` [`KIM_GRIP_MAX_SPEED_DEPENDENT_MU`]), `μ·μ_s ≤` [`KIM_GRIP_MAX_MU_MU_S`] (a speed-dependent law: [`KIM_GRIP_MAX_SPEED_DEPENDENT_MU_MU_S`]), `μ·μ_ct ≤` [`KIM_GRIP_MAX_MU_MU_CT`]; with cue-ball/table friction acting (`μ_ct > 0` and `μ > 0`) also `e* ≥` [`KIM_GRIP_MIN_RESTITUTION`] | [`Reason::Friction`], [`Reason::TableFriction`], [`Reason::CueTableFriction`], [`Reason::NearlyPlastic`] |
+//! | `KimGrip` | `μ ≤` [`KIM_GRIP_MAX_MU`], `μ·μ_s ≤` [`KIM_GRIP_MAX_MU_MU_S`] (a speed-dependent law: its `μ(0)`), `μ·μ_ct ≤` [`KIM_GRIP_MAX_MU_MU_CT`]; with cue-ball/table friction acting (`μ_ct > 0` and `μ > 0`) also `e* ≥` [`KIM_GRIP_MIN_RESTITUTION`] | [`Reason::Friction`], [`Reason::TableFriction`], [`Reason::CueTableFriction`], [`Reason::NearlyPlastic`] |
 //! | `SeedExact` | everywhere (every invariant holds on 1.6 million domain scenes) | — |
 //! | `Exact` | everywhere | — |
 //!
@@ -27,8 +27,11 @@
 //! general path's slide in pieces, with that friction on its cone along the table-contact
 //! slip the pieces turn through (`kim_grip::curved`, `docs/physics.md` §4 item 8), holds
 //! them to μ·μ_s = 0.2 (0.3 % of U beyond 0.25, 4.4 % / 8.3 % near 1; from μ·μ_s ≈ 0.7
-//! the first-order model created energy). Every pool, snooker and carom ball–cloth pair
-//! measured (μ 0.01–0.12 with its speed dependence, μ_s ≈ 0.2–0.3) is inside.
+//! the first-order model created energy). A speed-dependent law has the same domain,
+//! its `μ(0)` for μ, since each piece of the slide takes its own rate of slip
+//! (`kim_grip::budget`; with one rate for the whole slide it was held at μ(0) ≤ 0.15 and
+//! μ(0)·μ_s ≤ 0.08). Every pool, snooker and carom ball–cloth pair measured (μ 0.01–0.12
+//! with its speed dependence, μ_s ≈ 0.2–0.3) is inside.
 //!
 //! `Auto` only picks tiers inside their domains (its `KimGrip` tier needs μ ≤ 0.12,
 //! μ_s ≤ 0.4, e* ≥ 0.9 and μ_ct ≤ 1e-3 to be estimated at all), so it never refuses.
@@ -39,7 +42,6 @@
 //! stick impulse `s* = |K⁻¹ v₀|` (m/s).
 
 use crate::error::{Error, Result};
-use crate::friction::FrictionLaw;
 use crate::params::Params;
 
 /// A collision model without its parameters, as named by
@@ -87,11 +89,11 @@ pub enum Reason {
     /// 1). Kim assumes sliding for the whole impact (physics-notes E6); beyond `g = 2`
     /// its answer also creates energy (`host-tests/tests/invariants.rs`).
     Grips,
-    /// `KimGrip`: μ (the value; the law's largest, `μ(0)`) above [`KIM_GRIP_MAX_MU`], or
-    /// for a speed-dependent law above [`KIM_GRIP_MAX_SPEED_DEPENDENT_MU`].
+    /// `KimGrip`: μ (the value; the law's largest, `μ(0)`) above [`KIM_GRIP_MAX_MU`] (only
+    /// a law built from the enum's variant can be).
     Friction,
-    /// `KimGrip`: `μ·μ_s` (the value) above [`KIM_GRIP_MAX_MU_MU_S`] (a speed-dependent
-    /// law: [`KIM_GRIP_MAX_SPEED_DEPENDENT_MU_MU_S`]): the object ball's
+    /// `KimGrip`: `μ·μ_s` (the value; a speed-dependent law's `μ(0)·μ_s`) above
+    /// [`KIM_GRIP_MAX_MU_MU_S`]: the object ball's
     /// table friction enters at second order, which the model leaves out (issue 16: 27 %
     /// of U and 18° of throw at μ 0.9, μ_s 1).
     TableFriction,
@@ -120,50 +122,21 @@ impl Reason {
     pub const fn limit(self) -> &'static str {
         match self {
             Reason::Grips => "gripping index mu p0 / s* <= 1 (the contact slides throughout)",
-            Reason::Friction => "mu <= 1 (a speed-dependent law: mu(0) <= 0.15)",
-            Reason::TableFriction => "mu * mu_s <= 0.2 (a speed-dependent law: 0.08)",
+            Reason::Friction => "mu <= 1 (a speed-dependent law: mu(0))",
+            Reason::TableFriction => "mu * mu_s <= 0.2 (a speed-dependent law: mu(0) * mu_s)",
             Reason::CueTableFriction => "mu * mu_ct <= 0.01",
             Reason::NearlyPlastic => "restitution >= 0.01 when mu_ct > 0",
         }
     }
 }
 
-/// Largest constant μ in `KimGrip`'s domain ([`Reason::Friction`]): the whole accepted
-/// range (a law built from the enum's variant can hold more).
+/// Largest μ in `KimGrip`'s domain (a speed-dependent law: `μ(0)`; [`Reason::Friction`]):
+/// the whole accepted range (a law built from the enum's variant can hold more).
 pub const KIM_GRIP_MAX_MU: f32 = 1.0;
 
-/// Largest `μ(0)` of a speed-dependent law in `KimGrip`'s domain ([`Reason::Friction`]):
-/// above it the general path's μ(v) budget (a constant compliance along the slide) errs
-/// by more than 0.1° of throw on slow balls (0.102° at `μ(0)` 0.63, U 0.04 m/s: seed
-/// 16's domain scene 157141 of 10⁶, `host-tests/examples/kim_grip_inside.rs`).
-pub const KIM_GRIP_MAX_SPEED_DEPENDENT_MU: f32 = 0.15;
-
-/// The largest μ (the law's largest, `μ(0)`) `KimGrip` takes for `law`:
-/// [`KIM_GRIP_MAX_MU`], or [`KIM_GRIP_MAX_SPEED_DEPENDENT_MU`] for a speed-dependent law.
-pub const fn kim_grip_max_mu(law: &FrictionLaw) -> f32 {
-    match law {
-        FrictionLaw::SpeedDependent { .. } => KIM_GRIP_MAX_SPEED_DEPENDENT_MU,
-        FrictionLaw::Constant(_) => KIM_GRIP_MAX_MU,
-    }
-}
-
-/// Largest `μ·μ_s` in `KimGrip`'s domain for a constant law ([`Reason::TableFriction`]).
+/// Largest `μ·μ_s` in `KimGrip`'s domain (a speed-dependent law: `μ(0)·μ_s`;
+/// [`Reason::TableFriction`]).
 pub const KIM_GRIP_MAX_MU_MU_S: f32 = 0.2;
-
-/// Largest `μ(0)·μ_s` of a speed-dependent law in `KimGrip`'s domain
-/// ([`Reason::TableFriction`]): beyond it the general path's μ(v) budget (one mean rate
-/// of slip along the slide) erred by 0.32 % of U and 0.80 % in R ω (seed 17's domain
-/// scene 241,844: μ(0) 0.149, c 2.36 s/m, μ_s 0.84).
-pub const KIM_GRIP_MAX_SPEED_DEPENDENT_MU_MU_S: f32 = 0.08;
-
-/// The largest `μ·μ_s` `KimGrip` takes for `law`: [`KIM_GRIP_MAX_MU_MU_S`], or
-/// [`KIM_GRIP_MAX_SPEED_DEPENDENT_MU_MU_S`] for a speed-dependent law.
-pub const fn kim_grip_max_mu_mu_s(law: &FrictionLaw) -> f32 {
-    match law {
-        FrictionLaw::SpeedDependent { .. } => KIM_GRIP_MAX_SPEED_DEPENDENT_MU_MU_S,
-        FrictionLaw::Constant(_) => KIM_GRIP_MAX_MU_MU_S,
-    }
-}
 
 /// Largest `μ·μ_ct` in `KimGrip`'s domain ([`Reason::CueTableFriction`]).
 pub const KIM_GRIP_MAX_MU_MU_CT: f32 = 0.01;
@@ -181,11 +154,12 @@ pub const KIM_GRIP_MIN_RESTITUTION: f32 = 0.01;
 /// use cuesight::{Error, FrictionLaw, Params};
 ///
 /// assert!(kim_grip(&Params::POOL).is_ok());
-/// // A speed-dependent law with μ(0) = 0.3.
+/// // A speed-dependent law with μ(0) = 0.3 under a cloth with μ_s 0.8: μ(0)·μ_s = 0.24.
 /// let grippy = Params::POOL.with_friction_law(FrictionLaw::speed_dependent(0.1, 0.2, 1.0)?);
+/// assert!(kim_grip(&grippy).is_ok());
 /// assert!(matches!(
-///     kim_grip(&grippy),
-///     Err(Error::OutsideValidity { reason: Reason::Friction, .. })
+///     kim_grip(&grippy.with_mu_s(0.8)?),
+///     Err(Error::OutsideValidity { reason: Reason::TableFriction, .. })
 /// ));
 /// // A cloth of large friction under a large μ.
 /// let cloth = Params::POOL.with_mu(0.3)?.with_mu_s(0.8)?;
@@ -198,11 +172,11 @@ pub const KIM_GRIP_MIN_RESTITUTION: f32 = 0.01;
 pub fn kim_grip(params: &Params) -> Result<()> {
     let law = params.friction_law();
     let mu = law.largest();
-    if mu > kim_grip_max_mu(&law) {
+    if mu > KIM_GRIP_MAX_MU {
         return Err(outside(Reason::Friction, mu));
     }
     let mu_mu_s = mu * params.mu_s();
-    if mu_mu_s > kim_grip_max_mu_mu_s(&law) {
+    if mu_mu_s > KIM_GRIP_MAX_MU_MU_S {
         return Err(outside(Reason::TableFriction, mu_mu_s));
     }
     let mu_mu_ct = mu * params.cue_table_friction();
@@ -340,22 +314,20 @@ mod tests {
             refusal(&above, &impact, Model::KimGrip),
             Some((Tier::KimGrip, Reason::TableFriction, v)) if v > KIM_GRIP_MAX_MU_MU_S
         ));
-        // A speed-dependent law: μ(0) = a + b = 0.1 + 0.06 = 0.16 > 0.15.
-        let law = crate::FrictionLaw::speed_dependent(0.1, 0.06, 1.0).unwrap();
-        let speed_dependent = Params::POOL.with_friction_law(law);
+        // A speed-dependent law: μ(0) = a + b = 0.2 + 0.05 = 0.25, μ(0)·μ_s = 0.2 at
+        // μ_s 0.8 (the f32 0.25, so the same product as above) and above it next.
+        let law = crate::FrictionLaw::speed_dependent(0.2, 0.05, 1.0).unwrap();
+        let edge = Params::POOL.with_friction_law(law).with_mu_s(0.8).unwrap();
+        assert_eq!(law.largest(), 0.25);
+        assert_eq!(refusal(&edge, &impact, Model::KimGrip), None);
         assert!(matches!(
-            refusal(&speed_dependent, &impact, Model::KimGrip),
-            Some((Tier::KimGrip, Reason::Friction, v)) if (v - 0.16).abs() < 1e-6
+            refusal(&edge.with_mu_s(next(0.8)).unwrap(), &impact, Model::KimGrip),
+            Some((Tier::KimGrip, Reason::TableFriction, v)) if v > KIM_GRIP_MAX_MU_MU_S
         ));
-        let law = crate::FrictionLaw::speed_dependent(0.1, 0.04, 1.0).unwrap();
-        assert_eq!(
-            refusal(
-                &Params::POOL.with_friction_law(law),
-                &impact,
-                Model::KimGrip
-            ),
-            None
-        );
+        // μ(0) = 1 itself is inside.
+        let law = crate::FrictionLaw::speed_dependent(0.5, 0.5, 1.0).unwrap();
+        let edge = Params::POOL.with_friction_law(law).with_mu_s(0.2).unwrap();
+        assert_eq!(refusal(&edge, &impact, Model::KimGrip), None);
         // μ·μ_ct = 0.08 × 0.125, the f32 0.01, is inside; μ_ct 0.25 is not (draw: μ_ct
         // acts).
         let draw = Impact::from_cut_degrees(2.0, 30.0, [0.0, -60.0, 0.0]).unwrap();
@@ -417,7 +389,7 @@ mod tests {
         let error = outside(Reason::TableFriction, 0.9);
         assert_eq!(
             alloc_free_message(&error),
-            "kim-grip is valid only where mu * mu_s <= 0.2 (a speed-dependent law: 0.08) (here 0.9); use exact or auto"
+            "kim-grip is valid only where mu * mu_s <= 0.2 (a speed-dependent law: mu(0) * mu_s) (here 0.9); use exact or auto"
         );
         assert_eq!(error.field(), None);
     }

@@ -701,7 +701,7 @@ fn kim_grip_subnormal_inputs() {
         refused.unwrap_err().field(),
         Some(cuesight::Field::Friction)
     );
-    // μ(0) = a + b = 0.1: inside KimGrip's validity domain (μ ≤ 0.15).
+    // μ(0) = a + b = 0.1: inside KimGrip's validity domain (μ(0)·μ_s = 0.02).
     let law = FrictionLaw::speed_dependent(1e-6, 0.1 - 1e-6, 100.0).unwrap();
     let params = Params::POOL.with_friction_law(law);
     let impact = Impact::from_velocity([1.0, 0.0], [1e-40; 3]).unwrap();

@@ -3,7 +3,7 @@
 //! checked for consistency, not a failure.
 
 use cuesight::validity::{
-    kim_grip_max_mu, kim_grip_max_mu_mu_s, Reason, Tier, KIM_GRIP_MAX_MU_MU_CT,
+    Reason, Tier, KIM_GRIP_MAX_MU, KIM_GRIP_MAX_MU_MU_CT, KIM_GRIP_MAX_MU_MU_S,
     KIM_GRIP_MIN_RESTITUTION,
 };
 use cuesight::{collide, Error, Impact, Model, Outcome, Params};
@@ -27,10 +27,9 @@ pub fn declared(params: &Params, model: Model, error: &Error) -> bool {
     );
     let past = match reason {
         Reason::Grips => value >= 1.0, // an index just above 1 may round to 1.0 in f32
-        Reason::Friction => value == params.mu() && value > kim_grip_max_mu(&params.friction_law()),
+        Reason::Friction => value == params.mu() && value > KIM_GRIP_MAX_MU,
         Reason::TableFriction => {
-            value == params.mu() * params.mu_s()
-                && value > kim_grip_max_mu_mu_s(&params.friction_law())
+            value == params.mu() * params.mu_s() && value > KIM_GRIP_MAX_MU_MU_S
         }
         Reason::CueTableFriction => {
             value == params.mu() * params.cue_table_friction() && value > KIM_GRIP_MAX_MU_MU_CT

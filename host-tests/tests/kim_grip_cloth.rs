@@ -25,11 +25,14 @@ const SPIN: f64 = 0.005;
 const THROW_DEG: f64 = 0.1;
 
 /// The cloth set's μ: from `low`, up to `min(cap, 0.2/μ_s)` (μ_s drawn where that
-/// range is not empty).
+/// range is not empty); with `speed_dependent`, the `μ(0) = a + b` of a law `a +
+/// b e^{−cv}` with `a` 5–100 % of it and `c` log-uniform over 0.01–100 s/m (as the
+/// domain map draws them).
 #[derive(Clone, Copy)]
 struct MuRange {
     low: f64,
     cap: f64,
+    speed_dependent: bool,
 }
 
 /// The cloth set proper: every cloth, μ up to 0.15 (the single direction's range, the
@@ -37,12 +40,22 @@ struct MuRange {
 const CLOTHS: MuRange = MuRange {
     low: 0.001,
     cap: 0.15,
+    speed_dependent: false,
 };
 
 /// Large μ, 0.15–1 (the curved slide's range of μ, `kim_grip::curved`).
 const LARGE_MU: MuRange = MuRange {
     low: 0.15,
     cap: cuesight::validity::KIM_GRIP_MAX_MU as f64,
+    speed_dependent: false,
+};
+
+/// Speed-dependent laws, μ(0) 0.001–1 (the general path's slide in pieces, each piece
+/// at its own rate of slip, `kim_grip::budget`).
+const SPEED_LAWS: MuRange = MuRange {
+    low: 0.001,
+    cap: cuesight::validity::KIM_GRIP_MAX_MU as f64,
+    speed_dependent: true,
 };
 
 /// Scene `index` of the cloth set with μ in `range`.
@@ -63,6 +76,14 @@ fn cloth_scene(index: u64, range: MuRange) -> DomainScene {
     let mu_max = (mu_mu_s / mu_s).min(range.cap);
     let mu: f64 = rng.random_range(range.low..=mu_max);
     let restitution: f64 = rng.random_range(0.0..=1.0);
+    let friction = if range.speed_dependent {
+        let a = mu * rng.random_range(0.05..=1.0);
+        let c = rng.random_range(0.01f64.ln()..=100f64.ln()).exp();
+        FrictionLaw::speed_dependent(a as f32, (mu - a).max(0.0) as f32, c as f32)
+            .expect("drawn inside the accepted range")
+    } else {
+        FrictionLaw::Constant(mu as f32)
+    };
     DomainScene {
         scene: Scene {
             kind: SpinKind::Side,
@@ -76,7 +97,7 @@ fn cloth_scene(index: u64, range: MuRange) -> DomainScene {
         },
         spin_draw: SpinDraw::Uniform400,
         cut_deg,
-        friction: FrictionLaw::Constant(mu as f32),
+        friction,
         mu_ct: 0.0,
     }
 }
@@ -189,19 +210,34 @@ fn scene_659401_of_the_million() {
     );
 }
 
+/// Speed-dependent laws with μ(0) up to 1 and μ(0)·μ_s up to 0.2: with one rate of slip
+/// for the whole slide (`k̄ = |v₀|/s*`) the general path was up to 0.18 % / 0.44 % /
+/// 0.114° off where μ(0)·μ_s ≤ 0.08 and 0.43 % / 1.06 % / 0.26° up to 0.2, and the domain
+/// ended at μ(0) 0.15 and μ(0)·μ_s 0.08; each piece at its own rate holds the bound.
+#[test]
+fn kim_grip_within_its_bound_under_speed_dependent_laws() {
+    let bands = worst_per_mu_s_band(SPEED_LAWS, SCENES / 2);
+    let worst: [f64; 3] = std::array::from_fn(|k| bands.iter().map(|w| w[k]).fold(0.0, f64::max));
+    println!(
+        "speed-dependent laws: |dv|/U {:.3} %, R|dw|/U {:.3} %, throw {:.3} deg",
+        100.0 * worst[0],
+        100.0 * worst[1],
+        worst[2]
+    );
+    record("speed-laws", worst);
+}
+
 /// Scene 241,844 of seed 17's domain set (a speed-dependent law, μ(0) 0.149, c 2.36 s/m,
 /// on a cloth of μ_s 0.84: μ(0)·μ_s 0.126): `KimGrip` was 0.32 % of U off in velocity
-/// and 0.80 % in `R ω` when the domain took such laws to μ·μ_s 0.2. It refuses it
-/// (a speed-dependent law keeps μ·μ_s ≤ 0.08); a constant μ of the same size is inside.
+/// and 0.80 % in `R ω` with one rate of slip for the whole slide, and the domain refused
+/// it since; with each piece at its own rate it is inside the bound.
 #[test]
-fn scene_241844_of_seed_17_is_refused() {
+fn scene_241844_of_seed_17() {
     let d = scene(17, 241_844);
     assert!(matches!(d.friction, FrictionLaw::SpeedDependent { .. }));
-    assert!(matches!(
-        collide(&d.params(), &d.impact(), Model::KimGrip),
-        Err(cuesight::Error::OutsideValidity {
-            reason: cuesight::validity::Reason::TableFriction,
-            ..
-        })
-    ));
+    let (velocity, spin, throw) = errors(&d);
+    assert!(
+        velocity <= VELOCITY && spin <= SPIN && throw <= THROW_DEG,
+        "|dv|/U {velocity:e}, R|dw|/U {spin:e}, throw {throw} deg"
+    );
 }

@@ -80,34 +80,36 @@ fn grid_with(law: FrictionLaw, seed: u64, model: Model) -> Summary {
     }))
 }
 
-/// Same tolerances as the constant-μ grid: 0.5 % velocity, 1 % R ω, 0.25° throw.
+/// Same tolerances as the constant-μ grid: 0.5 % velocity, 1 % R ω, 0.25° throw; the
+/// second fit (μ(0) = 0.235, inside `KimGrip`'s domain since each piece of the slide
+/// takes its own rate of slip, `kim_grip::budget`) also within the domain's bound, 0.25 %
+/// / 0.5 % / 0.1°.
 #[test]
 fn kim_grip_tracks_the_reference_with_speed_dependent_friction() {
     let marlow = grid_with(FrictionLaw::MARLOW, 31, Model::KimGrip);
-    // The second fit's μ(0) = 0.235 is outside KimGrip's validity domain (a
-    // speed-dependent law's μ(0) ≤ 0.15):
-    // refused, typed; Exact answers it.
     let second = FrictionLaw::speed_dependent(0.016, 0.219, 0.691).unwrap();
-    let refusal = cuesight::validity::kim_grip(&Params::POOL.with_friction_law(second));
-    assert!(
-        matches!(refusal, Err(cuesight::Error::OutsideValidity { reason: cuesight::validity::Reason::Friction, value, .. }) if (value - 0.235).abs() < 1e-6),
-        "{refusal:?}"
-    );
-    let other = grid_with(second, 32, Model::Exact);
+    let other = grid_with(second, 32, Model::KimGrip);
+    let other_exact = grid_with(second, 32, Model::Exact);
     println!("Marlow fit (a 9.951e-3, b 0.108, c 1.088), KimGrip: {marlow}");
-    println!("second fit (a 0.016, b 0.219, c 0.691), Exact:     {other}");
+    println!("second fit (a 0.016, b 0.219, c 0.691), KimGrip:   {other}");
+    println!("second fit (a 0.016, b 0.219, c 0.691), Exact:     {other_exact}");
     for (key, s) in [
         ("physics-speed-dependent-marlow", &marlow),
-        ("physics-speed-dependent-second-fit-exact", &other),
+        ("physics-speed-dependent-second-fit", &other),
+        ("physics-speed-dependent-second-fit-exact", &other_exact),
     ] {
         for (key, value) in s.figures(key, [3, 3, 3], [3, 3, 3]) {
             cuesight_figures::record!(&key, "{value}");
         }
     }
-    for s in [marlow, other] {
+    for s in [&marlow, &other, &other_exact] {
         assert!(
             s.max.velocity <= 0.005 && s.max.spin <= 0.01 && s.max.throw_deg <= 0.25,
             "{s}"
         );
     }
+    assert!(
+        other.max.velocity <= 0.0025 && other.max.spin <= 0.005 && other.max.throw_deg <= 0.1,
+        "{other}"
+    );
 }

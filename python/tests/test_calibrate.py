@@ -87,15 +87,15 @@ def test_shared_points_as_dicts_are_the_clis_file(cli):
         assert cuesight.calibrate(points, **kwargs) == cli_calibrate(cli, SHARED, kwargs)
 
 
-CSV = """# cut, speed, spin, throw: a small set for the test
+CSV = """# cut, speed, spin, throw: a small set for the test (near TP A.14's mu(v), sliding)
 id,cut_deg,speed_mps,spin,throw_deg,uncertainty_deg,series
-a,10,1.0,stun,2.1,0.3,slow
-b,30,1.0,stun,3.6,0.3,slow
+a,30,3.0,stun,2.5,0.3,fast
+b,45,1.0,stun,3.9,0.3,slow
 c,50,1.0,follow,1.2,,slow
-d,10,3.0,stun,1.6,0.4,fast
-e,30,3.0,draw,2.9,0.4,fast
-f,50,3.0,0.5,1.9,,fast
-g,20,2.0,-0.5,3.0,0.3,medium
+d,45,3.0,stun,1.4,0.4,fast
+e,60,0.5,stun,4.6,0.4,slow
+f,60,2.0,stun,1.7,,medium
+g,40,2.0,-0.5,1.5,0.3,medium
 """
 
 

@@ -2,7 +2,7 @@
 //! regression of more than 5 % fails CI; issue 4: `KimGrip` f32 ≤ 150 instructions per
 //! collision): counts the f32 `KimGrip` prediction on fixed shots, one for each branch
 //! of its constant-μ fast path, one for each branch of its speed-dependent μ(v) fast path
-//! (issue 16 item 6: ≤ 200), plus six the general path takes (two on a cloth of large
+//! (issue 16 item 6: ≤ 200), plus seven the general path takes (three on a cloth of large
 //! friction, whose slide it follows in pieces), with the bench's method
 //! ([`cuesight_bench::count`]: function pointer, empty call subtracted, QEMU
 //! `-icount shift=0`). A branch has no loop, so its count does not depend on the
@@ -174,11 +174,19 @@ const SHOTS: [Shot; 20] = [
 /// follows a pressed object ball's slide in pieces (`kim_grip::curved`).
 const CLOTH_MU_S: f32 = 0.8;
 
-/// Shots on a cloth of μ_s [`CLOTH_MU_S`] (μ 0.05, POOL otherwise), on the general
-/// path: topspin that slides to the end and topspin that grips.
-const CLOTH_SHOTS: [(&str, [f32; 2], [f32; 3]); 2] = [
-    ("cloth-topspin-slides", [2.0, 0.0], [0.0, 70.0, 0.0]),
-    ("cloth-topspin-grips", [2.0, 0.3], [0.0, 7.0, 0.0]),
+/// Shots on a cloth of μ_s [`CLOTH_MU_S`] (μ 0.05 or, `< 0`, TP A.14's speed-dependent
+/// law; POOL otherwise), on the general path: topspin that slides to the end and topspin
+/// that grips; the speed-dependent law's slide, each piece at its own rate of slip
+/// (`kim_grip::budget`).
+const CLOTH_SHOTS: [(&str, f32, [f32; 2], [f32; 3]); 3] = [
+    ("cloth-topspin-slides", 0.05, [2.0, 0.0], [0.0, 70.0, 0.0]),
+    ("cloth-topspin-grips", 0.05, [2.0, 0.3], [0.0, 7.0, 0.0]),
+    (
+        "cloth-mu-v-topspin-slides",
+        -1.0,
+        [2.0, 0.0],
+        [0.0, 70.0, 0.0],
+    ),
 ];
 
 /// Instructions per f32 `KimGrip` prediction, in thousandths (the bench's method).
@@ -217,10 +225,13 @@ fn main() -> ! {
             fast_shots += 1;
         }
     }
-    for (label, v, w) in CLOTH_SHOTS {
-        let params = Params::POOL
-            .with_mu(0.05)
-            .and_then(|p| p.with_mu_s(CLOTH_MU_S));
+    for (label, mu, v, w) in CLOTH_SHOTS {
+        let params = if mu < 0.0 {
+            Ok(Params::POOL.with_friction_law(FrictionLaw::MARLOW))
+        } else {
+            Params::POOL.with_mu(mu)
+        }
+        .and_then(|p| p.with_mu_s(CLOTH_MU_S));
         let (Ok(params), Ok(impact)) = (params, Impact::from_velocity(v, w)) else {
             exit::exit(false)
         };

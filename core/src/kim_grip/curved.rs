@@ -60,12 +60,12 @@ pub(crate) const CURVED_MIN_MU: f32 = 0.15;
 pub(crate) const CURVED_MIN_MU_MU_S: f32 = 0.04;
 
 /// Pieces at most.
-const PIECES: usize = 12;
+pub(super) const PIECES: usize = 12;
 /// Share of its stick budget each piece but the last spends.
 const PIECE_SHARE: f32 = 0.25;
 
 /// A slip and its compliance, in units where the slip's largest component is 1 (as the
-/// parent module's `TangentialSlip`).
+/// single-direction path's `TangentialSlip`).
 #[derive(Clone, Copy)]
 pub(super) struct CurvedSlide<R> {
     /// `v₀ / scale`.
@@ -95,6 +95,12 @@ impl<R: Real> CurvedSlide<R> {
         ((y - self.k_yz * i_z) / k_y::<R>(), i_z)
     }
 
+    /// The stick impulse `−K⁻¹v₀` (m/s), which stops the slip.
+    pub(super) fn stick_impulse(&self) -> (R, R) {
+        let (i_y, i_z) = self.inverse((self.unit_y, self.unit_z));
+        (-i_y * self.scale, -i_z * self.scale)
+    }
+
     /// `K v`.
     fn apply(&self, (y, z): (R, R)) -> (R, R) {
         (k_y::<R>() * y + self.k_yz * z, self.k_z * z)
@@ -110,13 +116,13 @@ impl<R: Real> CurvedSlide<R> {
     /// One piece: the friction impulse (units of `scale`) after spending `budget` from
     /// slip `v` whose stick budget is `stick > budget` (the parent module's `α(S)` with
     /// `f = budget/stick`, `σ = stick/|v|` and `α_b/|v| = 1/(k_y + k_z)`, module docs).
-    fn piece(&self, slip: (R, R), stick: R, budget: R) -> (R, R) {
+    fn piece(&self, slip: (R, R), norm: R, stick: R, budget: R) -> (R, R) {
         let half = R::of(0.5);
         let (y, z) = slip;
         let (k_y_v, k_z_v) = self.apply(slip);
         let boundary = R::ONE / (k_y::<R>() + self.k_z);
         let fraction = budget / stick;
-        let half_sigma = half * stick / R::sqrt(y * y + z * z);
+        let half_sigma = half * stick / norm;
         let alpha_per_norm = fraction * (half_sigma + (boundary - half_sigma) * fraction);
         let mid_y = y - alpha_per_norm * k_y_v;
         let mid_z = z - alpha_per_norm * k_z_v;
@@ -130,10 +136,33 @@ impl<R: Real> CurvedSlide<R> {
         (y + d_y, z + d_z)
     }
 
-    /// The budget (m/s) that stops the slip, the sliding path's length: the first
-    /// `PIECES − 1` pieces' budgets and the last one's stick budget.
+    /// [`Self::profile`]'s stop budget alone.
+    #[cfg(test)]
     pub(super) fn stop_budget(&self) -> R {
-        self.march(R::of(f32::INFINITY), R::ZERO).spent
+        self.profile(false).0
+    }
+
+    /// The budget (m/s) that stops the slip, the sliding path's length (the first
+    /// `PIECES − 1` pieces' budgets and the last one's stick budget), and with `record`
+    /// the whole slide's [`Profile`]: the budget spent and the slip speed at each piece's
+    /// start, and at the grip (slip speed zero; without `record`, every point zero).
+    pub(super) fn profile(&self, record: bool) -> (R, Profile<R>) {
+        let point = Point {
+            budget: R::ZERO,
+            speed: R::ZERO,
+            normal: R::ZERO,
+        };
+        let mut profile = Profile {
+            points: [point; PIECES + 1],
+        };
+        let stop = self
+            .walk(
+                R::of(f32::INFINITY),
+                R::ZERO,
+                record.then_some(&mut profile),
+            )
+            .spent;
+        (stop, profile)
     }
 
     /// The friction impulse `(j_y, j_z)` (m/s) on the object ball after a budget
@@ -149,8 +178,18 @@ impl<R: Real> CurvedSlide<R> {
     /// object ball's table friction direction (unnormalised): each piece's pressing
     /// `−Δj_z` along the table-contact slip `c_free = (p − j_z/ν, j_y)` at its middle
     /// (the parent module's `table_contact_slip`), which turns as the slip does.
-    #[inline(never)]
     pub(super) fn march(&self, budget: R, normal_per_budget: R) -> Marched<R> {
+        self.walk(budget, normal_per_budget, None)
+    }
+
+    /// [`Self::march`], recording each piece's start (and the grip) in `profile`.
+    #[inline(never)]
+    fn walk(
+        &self,
+        budget: R,
+        normal_per_budget: R,
+        mut profile: Option<&mut Profile<R>>,
+    ) -> Marched<R> {
         let target = budget / self.scale;
         let half = R::of(0.5);
         let mut slip = (self.unit_y, self.unit_z);
@@ -162,6 +201,10 @@ impl<R: Real> CurvedSlide<R> {
                 break;
             }
             let stick = self.stick_budget(slip);
+            let norm = R::sqrt(slip.0 * slip.0 + slip.1 * slip.1);
+            if let Some(profile) = profile.as_deref_mut() {
+                profile.record(piece, spent * self.scale, norm * self.scale, false);
+            }
             let budget = if piece + 1 < PIECES {
                 R::min(R::of(PIECE_SHARE) * stick, left)
             } else {
@@ -173,7 +216,7 @@ impl<R: Real> CurvedSlide<R> {
                 let (i_y, i_z) = self.inverse(slip);
                 ((-i_y, -i_z), stick)
             } else {
-                (self.piece(slip, stick, budget), budget)
+                (self.piece(slip, norm, stick, budget), budget)
             };
             let (mid_y, mid_z) = (j_y + half * impulse.0, j_z + half * impulse.1);
             let c_x = (spent + half * step) * normal_per_budget - R::of(2.5) * mid_z;
@@ -183,9 +226,11 @@ impl<R: Real> CurvedSlide<R> {
                 table = (table.0 + weight * c_x, table.1 + weight * mid_y);
             }
             if stops {
-                let (i_y, i_z) = self.inverse((self.unit_y, self.unit_z));
+                if let Some(profile) = profile {
+                    profile.record(piece + 1, (spent + stick) * self.scale, R::ZERO, true);
+                }
                 return Marched {
-                    impulse: (-i_y * self.scale, -i_z * self.scale),
+                    impulse: self.stick_impulse(),
                     spent: (spent + stick) * self.scale,
                     table,
                 };
@@ -199,6 +244,36 @@ impl<R: Real> CurvedSlide<R> {
             impulse: (j_y * self.scale, j_z * self.scale),
             spent: spent * self.scale,
             table,
+        }
+    }
+}
+
+/// The slide's course (`super::budget`): at each piece's start and at the grip, in
+/// order, the budget spent, the slip speed and (filled in by `budget`) the normal
+/// impulse.
+pub(super) struct Profile<R> {
+    /// Past the grip (the slip stops in its last piece but for NaN), copies of it.
+    pub points: [Point<R>; PIECES + 1],
+}
+
+/// One point of a [`Profile`] (each m/s).
+#[derive(Clone, Copy)]
+pub(super) struct Point<R> {
+    pub budget: R,
+    pub speed: R,
+    pub normal: R,
+}
+
+impl<R: Real> Profile<R> {
+    /// Point `index`; for the grip (`to_end`), every one after it too. (Out of line:
+    /// flash.)
+    #[inline(never)]
+    fn record(&mut self, index: usize, budget: R, speed: R, to_end: bool) {
+        for point in self.points.iter_mut().skip(index) {
+            (point.budget, point.speed) = (budget, speed);
+            if !to_end {
+                break;
+            }
         }
     }
 }

@@ -1,12 +1,11 @@
 //! `KimGrip`'s general path: every scene of its validity domain the fast paths decline
 //! (parent module docs; `docs/physics.md` §4 items 3–8).
 
+use super::budget::Budget;
 use super::curved;
 use super::normal::two_rate_normal_impulse;
-use super::slip::TangentialSlip;
 use super::{initial_slip, nu, GEARING_SLIP_SQUARED};
 use crate::error::Result;
-use crate::friction::FrictionLaw;
 use crate::impact::Impact;
 use crate::outcome::{Outcome, Regime, SpecificImpulses};
 use crate::params::Params;
@@ -89,37 +88,21 @@ pub(super) fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
         } else {
             mu_ct * cue_dir_y
         };
-        let slip = TangentialSlip::new(slip_y, slip_z, scale, k_yz, k_z);
-        if slip.stick_budget == R::ZERO {
-            // A slip so small that the impulse cancelling it underflows: exact gearing.
-            return Outcome::without_friction(params, impact, frictionless_normal, false);
-        }
-        let slip_speed = slip.unit_norm * scale;
         // The slide in pieces (`curved`), whose sliding path's length replaces s* as the
-        // grip threshold.
-        let curved = curved::CurvedSlide::new(slip.unit_y, slip.unit_z, scale, k_yz, k_z);
-        let stick_budget = curved.stop_budget();
-        // Effective compliance along the slip path, k̄ = |v₀| / s* (see `friction`).
-        let compliance = slip_speed / stick_budget;
-        // p*: the normal impulse at which the slip would stop (may be +inf for tiny μ).
-        let grip_normal = match law {
-            FrictionLaw::Constant(mu) => stick_budget / R::of(mu),
-            FrictionLaw::SpeedDependent { .. } => {
-                law.normal_impulse_between(slip_speed, R::ZERO, compliance)
-            }
-        };
-        let budget = Budget {
-            law,
-            grip_normal,
-            stick_budget,
-            slip_speed,
-            compliance,
-        };
-        let budget_after = |normal: R| budget.after(normal);
+        // grip threshold, and the budget it spends by each normal impulse (`budget`).
+        let curved = curved::CurvedSlide::new(slip_y / scale, slip_z / scale, scale, k_yz, k_z);
+        let budget = Budget::new(law, &curved);
+        // The stick budget is positive (no gearing case here): the slip's largest
+        // component is at least 0.7 pm/s (`gearing` above) and `|K⁻¹v| ≥ |v|/‖K‖ ≥ |v|/12`
+        // (k_y = 7, 3.5 ≤ k_z ≤ 8.5, |k_yz| ≤ 1), so the first piece alone spends at
+        // least 1.4e-14 m/s, a normal f32.
+        // The stick impulse −K⁻¹v₀ (m/s).
+        let (stick_y, stick_z) = curved.stick_impulse();
+        let (stick_budget, grip_normal) = (budget.stick_budget, budget.grip_normal);
 
         // The friction direction's vertical share at the first-order budget, for the
         // table-friction rate ρ (table impulse per unit normal impulse while sliding).
-        let first_budget = budget_after(frictionless_normal);
+        let first_budget = budget.after(frictionless_normal);
         let first_span = R::min(frictionless_normal, grip_normal);
         // The table friction's rate (table impulse per unit normal impulse) up to the end
         // of compression and after it. While the pressed ball's table contact slides its
@@ -128,13 +111,13 @@ pub(super) fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
         // another after it, from the pieces' |J_z| there and at the first-order end.
         let pressing = |budget: R| -> R {
             if budget >= stick_budget {
-                R::abs(slip.stick_z)
+                R::abs(stick_z)
             } else {
                 R::abs(curved.impulse(budget).1)
             }
         };
         let compression_span = R::min(half * approach, grip_normal);
-        let compression_pressing = pressing(budget_after(compression_span));
+        let compression_pressing = pressing(budget.after(compression_span));
         let compression_rate = if compression_span > R::ZERO {
             table_mu * compression_pressing / compression_span
         } else {
@@ -158,7 +141,7 @@ pub(super) fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
         );
         let span = R::min(normal, grip_normal);
         let budget_end = if slides {
-            budget_after(normal)
+            budget.after(normal)
         } else {
             stick_budget
         };
@@ -170,7 +153,7 @@ pub(super) fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
             let (j_y, j_z) = marched.impulse;
             (j_y, j_z, Regime::Sliding)
         } else {
-            (slip.stick_y, slip.stick_z, Regime::Gripping)
+            (stick_y, stick_z, Regime::Gripping)
         };
         let (table, cue_table_x, cue_table_y) = if object_pressed {
             // The object ball's table contact slides: its friction is μ_s times the
@@ -214,39 +197,5 @@ pub(super) fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
             cue_table_y,
         };
         return Outcome::from_impulses(params, impact, impulses, regime);
-    }
-}
-
-/// The friction budget `S(p) = ∫ μ dp` (m/s) a sliding contact spends by normal impulse
-/// `p`, up to the stick budget at the grip `p*`.
-struct Budget<R> {
-    law: FrictionLaw,
-    /// `p*` (m/s).
-    grip_normal: R,
-    /// The budget that stops the slip (m/s).
-    stick_budget: R,
-    /// `|v₀|` (m/s).
-    slip_speed: R,
-    /// `k̄ = |v₀| / stick_budget` (see `friction`).
-    compliance: R,
-}
-
-impl<R: Real> Budget<R> {
-    /// `S(p)` for a normal impulse `normal` (m/s). Out of line: the general path takes it
-    /// at up to three normal impulses.
-    #[inline(never)]
-    fn after(&self, normal: R) -> R {
-        if normal >= self.grip_normal {
-            self.stick_budget
-        } else {
-            match self.law {
-                FrictionLaw::Constant(mu) => R::of(mu) * normal,
-                FrictionLaw::SpeedDependent { .. } => {
-                    self.law
-                        .slip_change(self.slip_speed, normal, self.compliance)
-                        / self.compliance
-                }
-            }
-        }
     }
 }

@@ -1,5 +1,6 @@
-//! The general path's tangential slip and the stick impulse that stops it (parent module
-//! docs; `curved` follows the slide itself, in pieces).
+//! The single-direction path's tangential slip and the stick impulse that stops it
+//! (`straight`, the fast paths' oracle; the general path follows the slide in pieces,
+//! `curved`).
 
 use super::k_y;
 use crate::real::Real;
@@ -10,8 +11,6 @@ pub(super) struct TangentialSlip<R> {
     /// Slip direction scaled so its largest component is ±1 (`v₀ / scale`).
     pub(super) unit_y: R,
     pub(super) unit_z: R,
-    /// `|v₀| / scale`.
-    pub(super) unit_norm: R,
     /// Stick impulse `j_stick = −K⁻¹ v₀` (m/s).
     pub(super) stick_y: R,
     pub(super) stick_z: R,
@@ -24,7 +23,6 @@ impl<R: Real> TangentialSlip<R> {
     pub(super) fn new(slip_y: R, slip_z: R, scale: R, k_yz: R, k_z: R) -> Self {
         let unit_y = slip_y / scale;
         let unit_z = slip_z / scale;
-        let unit_norm = R::sqrt(unit_y * unit_y + unit_z * unit_z);
         // K⁻¹ u, u = v₀ / scale.
         let inverse_z = unit_z / k_z;
         let inverse_y = (unit_y - k_yz * inverse_z) / k_y::<R>();
@@ -32,7 +30,6 @@ impl<R: Real> TangentialSlip<R> {
         Self {
             unit_y,
             unit_z,
-            unit_norm,
             stick_y: -inverse_y * scale,
             stick_z: -inverse_z * scale,
             stick_budget: unit_stick * scale,

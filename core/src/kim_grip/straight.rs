@@ -211,7 +211,8 @@ struct StraightSlip<R> {
 impl<R: Real> StraightSlip<R> {
     fn new(slip_y: R, slip_z: R, scale: R, k_yz: R, k_z: R) -> Self {
         let base = TangentialSlip::new(slip_y, slip_z, scale, k_yz, k_z);
-        let (unit_y, unit_z, unit_norm) = (base.unit_y, base.unit_z, base.unit_norm);
+        let (unit_y, unit_z) = (base.unit_y, base.unit_z);
+        let unit_norm = R::sqrt(unit_y * unit_y + unit_z * unit_z);
         // |K⁻¹u| and (K⁻¹u)_z, u = v₀ / scale.
         let unit_stick = base.stick_budget / scale;
         let inverse_z = -base.stick_z / scale;

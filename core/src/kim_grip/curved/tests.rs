@@ -159,7 +159,7 @@ fn curved_slide_follows_the_exact_slide() {
                 let (y, z) = if budget >= stick {
                     (-stick_impulse.0, -stick_impulse.1)
                 } else {
-                    curved.piece((u0[0], u0[1]), stick, budget)
+                    curved.piece((u0[0], u0[1]), u0[0].hypot(u0[1]), stick, budget)
                 };
                 single_worst = single_worst.max((y - want[0]).hypot(z - want[1]) / stick);
             }

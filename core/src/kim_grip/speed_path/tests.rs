@@ -15,7 +15,7 @@ fn speed_path_agrees_with_the_straight_general_path() {
     let (mut worst, mut worst_general32) = (0.0f32, 0.0f32);
     for _ in 0..20_000 {
         let a = uniform(1e-3, 0.05);
-        let b = uniform(1e-3, crate::validity::KIM_GRIP_MAX_SPEED_DEPENDENT_MU - a);
+        let b = uniform(1e-3, crate::kim_grip::CURVED_MIN_MU - a);
         let c = uniform(0.05, 5.0);
         let law = FrictionLaw::speed_dependent(a, b, c).unwrap();
         let mu_s = uniform(
