@@ -50,6 +50,9 @@ pub(crate) struct Derived {
     /// validity domain, not frictionless and elastic (where `Ideal` is exact), e* ≥
     /// 0.01 (the domain's edge that depends on μ_ct).
     pub auto_kim_grip: bool,
+    /// Where `KimGrip` refuses these parameters (`validity::kim_grip`): the reason and
+    /// the value past its limit.
+    pub kim_grip_refusal: Option<(crate::validity::Reason, f32)>,
     /// The speed-dependent law `μ(v) = a + b e^{−cv}` when `KimGrip`'s speed-dependent
     /// fast path applies to it (validated ranges with `b > 0`, `c > 0`, μ_ct = 0, inside
     /// `KimGrip`'s validity domain), else `None`.
@@ -79,17 +82,14 @@ impl Derived {
         mu_ct: f32,
         radius: f32,
     ) -> Self {
-        // Inside `KimGrip`'s validity domain (`validity::kim_grip`): scenes outside it
-        // go to the general path, which refuses them, so the fast paths pay nothing for
-        // it; and `Auto` at a loose tolerance picks `KimGrip` on it.
-        // (`validity::kim_grip`'s first three tests, without short-circuits: the
-        // fourth, e* ≥ 0.01 where μ_ct acts, follows from `auto_kim_grip`'s own e* test
-        // and does not arise for the fast paths, which need μ_ct = 0; the test
-        // `auto_kim_grip_is_the_validity_domain` holds the two together.)
+        // Inside `KimGrip`'s validity domain (`validity::kim_grip`, which returns the
+        // refusal kept here): scenes outside it go to the general path, which refuses
+        // them, so the fast paths pay nothing for it; and `Auto` at a loose tolerance
+        // picks `KimGrip` on it (the test `auto_kim_grip_is_the_validity_domain`).
         let largest = friction.largest();
-        let inside = (largest <= crate::validity::KIM_GRIP_MAX_MU)
-            & (largest * mu_s <= crate::validity::KIM_GRIP_MAX_MU_MU_S)
-            & (largest * mu_ct <= crate::validity::KIM_GRIP_MAX_MU_MU_CT);
+        let kim_grip_refusal =
+            crate::validity::kim_grip_refusal(&friction, mu_s, mu_ct, restitution);
+        let inside = kim_grip_refusal.is_none();
         // The fast paths' region (`kim_grip::curved`): μ ≤ `CURVED_MIN_MU` (a
         // speed-dependent law's μ(0)), μ_s ≤ `CURVED_MIN_MU_S`, μ·μ_s ≤
         // `CURVED_MIN_MU_MU_S`; the general path follows the slide in pieces everywhere
@@ -135,6 +135,7 @@ impl Derived {
             & (restitution >= crate::validity::KIM_GRIP_MIN_RESTITUTION);
         Self {
             auto_kim_grip,
+            kim_grip_refusal,
             #[cfg(feature = "speed-path")]
             kim_grip_speed_law,
             kim_grip_mu,

@@ -20,14 +20,26 @@ enum Setup {
     Rolling { velocity: [f32; 2] },
 }
 
-/// One named shot.
+/// One named shot. The name is a defmt-interned string (its text lives in the ELF's
+/// `.defmt` section, not in flash; the host's decoder prints it), behind a function
+/// because interning is not a constant expression.
 pub struct Shot {
-    name: &'static str,
+    name: fn() -> defmt::Str,
     setup: Setup,
 }
 
+/// A shot's name: a function returning the interned literal.
+macro_rules! name {
+    ($text:literal) => {{
+        fn name() -> defmt::Str {
+            defmt::intern!($text)
+        }
+        name
+    }};
+}
+
 /// A shot at `speed` (m/s) and cut angle `cut_deg` (degrees) with `spin` (rad/s).
-const fn cut(name: &'static str, speed: f32, cut_deg: f32, spin: [f32; 3]) -> Shot {
+const fn cut(name: fn() -> defmt::Str, speed: f32, cut_deg: f32, spin: [f32; 3]) -> Shot {
     Shot {
         name,
         setup: Setup::Cut {
@@ -39,7 +51,7 @@ const fn cut(name: &'static str, speed: f32, cut_deg: f32, spin: [f32; 3]) -> Sh
 }
 
 /// A naturally rolling cue ball at `velocity` (m/s).
-const fn rolling(name: &'static str, velocity: [f32; 2]) -> Shot {
+const fn rolling(name: fn() -> defmt::Str, velocity: [f32; 2]) -> Shot {
     Shot {
         name,
         setup: Setup::Rolling { velocity },
@@ -52,21 +64,26 @@ const SIN_30: f32 = 0.5;
 /// The shots, each evaluated with every [`Model`]. Spin is `[ω_x, ω_y, ω_z]`:
 /// `ω_y < 0` is draw, `ω_z > 0` counter-clockwise seen from above (side spin).
 pub const SHOTS: [Shot; 5] = [
-    cut("stun, 30 deg cut, 2 m/s", 2.0, 30.0, [0.0, 0.0, 0.0]),
-    rolling("natural roll, head-on, 2 m/s", [2.0, 0.0]),
+    cut(name!("stun, 30 deg cut, 2 m/s"), 2.0, 30.0, [0.0, 0.0, 0.0]),
+    rolling(name!("natural roll, head-on, 2 m/s"), [2.0, 0.0]),
     // One "reverse roll" of backspin: ω_y = −U/R.
-    cut("draw, 20 deg cut, 2 m/s", 2.0, 20.0, [0.0, -2.0 / R, 0.0]),
+    cut(
+        name!("draw, 20 deg cut, 2 m/s"),
+        2.0,
+        20.0,
+        [0.0, -2.0 / R, 0.0],
+    ),
     // ω_z = −U sin φ / R cancels the contact slip (seed eq. (11)): friction has
     // nothing to throw with, which only a model that grips gets right.
     cut(
-        "gearing outside english, 30 deg cut, 1 m/s",
+        name!("gearing outside english, 30 deg cut, 1 m/s"),
         1.0,
         30.0,
         [0.0, 0.0, -SIN_30 / R],
     ),
     // ω_z = +U/R adds to the slip of the cut.
     cut(
-        "inside english, 30 deg cut, 1 m/s",
+        name!("inside english, 30 deg cut, 1 m/s"),
         1.0,
         30.0,
         [0.0, 0.0, 1.0 / R],
@@ -109,7 +126,7 @@ pub fn run_all() -> u32 {
             Ok(impact) => impact,
             Err(_) => {
                 // The shots are constants inside every range: this is a broken build.
-                defmt::error!("{=str}: invalid impact", shot.name);
+                defmt::error!("{=istr}: invalid impact", (shot.name)());
                 failures += BUILT_MODELS as u32;
                 continue;
             }
@@ -125,8 +142,8 @@ pub fn run_all() -> u32 {
                 Err(_) => {
                     // `collide`'s only error for valid inputs: a non-finite result.
                     defmt::error!(
-                        "{=str} [{=str}]: collide failed (numerical failure)",
-                        shot.name,
+                        "{=istr} [{=str}]: collide failed (numerical failure)",
+                        (shot.name)(),
                         model.name()
                     );
                     failures += 1;
@@ -147,8 +164,8 @@ pub fn run_all() -> u32 {
 
 fn log(shot: &Shot, model: Model, out: &Outcome) {
     defmt::info!(
-        "{=str} [{=str}]: {=str}, throw {=f32} deg, cue deflection {=f32} deg",
-        shot.name,
+        "{=istr} [{=str}]: {=str}, throw {=f32} deg, cue deflection {=f32} deg",
+        (shot.name)(),
         model.name(),
         out.regime.name(),
         out.throw_angle_deg(),
@@ -174,16 +191,16 @@ fn check(shot: &Shot, model: Model, out: &Outcome) -> bool {
         && out.cue_deflection_deg().is_finite();
     if !finite {
         defmt::error!(
-            "{=str} [{=str}]: non-finite output",
-            shot.name,
+            "{=istr} [{=str}]: non-finite output",
+            (shot.name)(),
             model.name()
         );
         return false;
     }
     if out.object_ball.velocity.x <= 0.0 {
         defmt::error!(
-            "{=str} [{=str}]: object ball not driven forward (v.x {=f32} m/s)",
-            shot.name,
+            "{=istr} [{=str}]: object ball not driven forward (v.x {=f32} m/s)",
+            (shot.name)(),
             model.name(),
             out.object_ball.velocity.x
         );

@@ -31,7 +31,7 @@ fn models_track_the_reference_with_cue_table_friction() {
                 (s, params, r)
             })
             .collect();
-        // Over the scenes the model answers: KimGrip refuses μ·μ_ct > 0.01 (its
+        // Over the scenes the model answers: KimGrip refuses μ·μ_ct > 0.05 (its
         // validity domain), the other scenes of the grid.
         let summary = |model: Model, only_sliding: bool| {
             Summary::of(
@@ -85,7 +85,7 @@ fn models_track_the_reference_with_cue_table_friction() {
 /// follow shot (the cue ball lifts off the cloth instead).
 #[test]
 fn draw_loses_speed_to_the_cloth_and_follow_does_not() {
-    // μ·μ_ct = 0.08 × 0.125 = 0.01: the edge of KimGrip's validity domain.
+    // μ·μ_ct = 0.08 × 0.125 = 0.01: inside KimGrip's validity domain (μ·μ_ct ≤ 0.05).
     let mu_ct = 0.125;
     let base = cuesight::Params::POOL.with_mu(0.08).unwrap();
     let with = base.with_cue_table_friction(mu_ct as f32).unwrap();

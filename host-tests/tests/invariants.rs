@@ -35,7 +35,7 @@
 //!   tangential slip by `7 j` along `y`, so while the slip falls linearly from `v₀` they
 //!   do work `−j (v₀ − 7 j / 2)` per unit mass, positive once `7 j > 2 v₀`.
 //! * `KimGrip`: every invariant wherever it answers; its validity domain refuses
-//!   μ·μ_s > 0.2 (a speed-dependent law: μ(0)·μ_s), μ·μ_ct > 0.01 and, with
+//!   μ·μ_s > 0.2 (a speed-dependent law: μ(0)·μ_s), μ·μ_ct > 0.05 and, with
 //!   μ_ct > 0, e* < 0.01 (most of this accepted domain, whose μ and μ_s span [0, 1];
 //!   until the slide was followed in pieces for μ > 0.15, every μ > 0.15 too). Before that fence (10⁶ set): energy
 //!   grew in 22 scenes from μ·μ_s = 0.702 (up to ×1.19), and the balls ended moving

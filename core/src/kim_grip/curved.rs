@@ -76,6 +76,11 @@ pub(super) struct CurvedSlide<R> {
     /// `k_yz` and `k_z` (`k_y` is 7).
     k_yz: R,
     k_z: R,
+    /// The pressed ball's table-contact slip before the impact, negated (units of
+    /// `scale`), and the coefficient of `j_z` in it, `∓1/ν` (object ball, cue ball):
+    /// [`Self::march`] follows `±c`.
+    contact: (R, R),
+    spin_share: R,
 }
 
 impl<R: Real> CurvedSlide<R> {
@@ -86,6 +91,20 @@ impl<R: Real> CurvedSlide<R> {
             scale,
             k_yz,
             k_z,
+            contact: (R::ZERO, R::ZERO),
+            spin_share: R::of(-2.5),
+        }
+    }
+
+    /// The same slide with [`Self::march`]'s table friction direction that of the ball
+    /// pressed into the cloth: `(−c₀_x, −c₀_y, s)`, its table-contact slip before the
+    /// impact, negated, in units of `scale`, and the share `s` of `j_z` in it: the object
+    /// ball's `(0, 0, −1/ν)`, the cue ball's (draw) `(−c'₀_x, −c'₀_y, 1/ν)`.
+    pub(super) fn pressed(self, (c_x, c_y, spin_share): (R, R, R)) -> Self {
+        Self {
+            contact: (c_x, c_y),
+            spin_share,
+            ..self
         }
     }
 
@@ -175,9 +194,13 @@ impl<R: Real> CurvedSlide<R> {
     /// The pieces up to `budget` (m/s): the impulse (m/s) and the budget spent, which
     /// is where the slip stopped if it did (`budget = ∞`: always, in the last piece).
     /// With the normal impulse `normal_per_budget` times the budget spent, also the
-    /// object ball's table friction direction (unnormalised): each piece's pressing
-    /// `−Δj_z` along the table-contact slip `c_free = (p − j_z/ν, j_y)` at its middle
-    /// (the parent module's `table_contact_slip`), which turns as the slip does.
+    /// pressed ball's table friction direction (unnormalised): each piece's pressing along
+    /// that ball's table-contact slip at its middle, which turns as the slip does. For the
+    /// object ball the pressing is `−Δj_z` and the slip `c_free = (p − j_z/ν, j_y)` (the
+    /// parent module's `table_contact_slip`); for the cue ball (draw, [`Self::pressed`])
+    /// `Δj_z` and `c'₀ + (−p − j_z/ν, −j_y)`: it takes `−p x̂ − j` at its contact point
+    /// `R x̂`, whose torque spins it by `Ω_y = j_z/(ν R)`, moving its table contact by
+    /// `−R Ω_y x̂`.
     pub(super) fn march(&self, budget: R, normal_per_budget: R) -> Marched<R> {
         self.walk(budget, normal_per_budget, None)
     }
@@ -219,11 +242,16 @@ impl<R: Real> CurvedSlide<R> {
                 (self.piece(slip, norm, stick, budget), budget)
             };
             let (mid_y, mid_z) = (j_y + half * impulse.0, j_z + half * impulse.1);
-            let c_x = (spent + half * step) * normal_per_budget - R::of(2.5) * mid_z;
-            let length = R::sqrt(c_x * c_x + mid_y * mid_y);
+            // `c` for the object ball, `−c'` for the cue ball (whose pressing `+Δj_z`
+            // then weighs it with the object ball's sign).
+            let c_x = self.contact.0
+                + (spent + half * step) * normal_per_budget
+                + self.spin_share * mid_z;
+            let c_y = self.contact.1 + mid_y;
+            let length = R::sqrt(c_x * c_x + c_y * c_y);
             if length > R::ZERO {
                 let weight = -impulse.1 / length;
-                table = (table.0 + weight * c_x, table.1 + weight * mid_y);
+                table = (table.0 + weight * c_x, table.1 + weight * c_y);
             }
             if stops {
                 if let Some(profile) = profile {

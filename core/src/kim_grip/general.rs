@@ -41,56 +41,57 @@ pub(super) fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
 
     let scale = R::max(R::abs(slip_y), R::abs(slip_z));
     let object_pressed = slip_z > R::ZERO;
-    // Draw presses the cue ball into the cloth; its table friction μ_ct (if set) acts
-    // against its table-contact slip c' = U + ω × (−R ẑ), taken at its initial direction.
+    // Draw presses the cue ball into the cloth, and its table friction μ_ct (if set)
+    // acts against its table-contact slip c' = U + ω × (−R ẑ).
     let mu_ct = R::of(params.cue_table_friction());
-    let (cue_dir_x, cue_dir_y) = if !object_pressed && slip_z < R::ZERO && mu_ct > R::ZERO {
-        let (u, w, radius) = (impact.velocity(), impact.spin(), R::of(params.radius()));
-        let (c_x, c_y) = (
-            R::of(u.x) - radius * R::of(w.y),
-            R::of(u.y) + radius * R::of(w.x),
-        );
-        let length = R::sqrt(c_x * c_x + c_y * c_y);
-        if length > R::ZERO {
-            (c_x / length, c_y / length)
-        } else {
-            (R::ZERO, R::ZERO)
-        }
+    let cue_pressed = !object_pressed && slip_z < R::ZERO && mu_ct > R::ZERO;
+    let (u, w, radius) = (impact.velocity(), impact.spin(), R::of(params.radius()));
+    // The pressed ball's table-contact slip before the impact, negated, in units of
+    // `scale`, and the share of `j_z` in it (`curved::CurvedSlide::pressed`): the object
+    // ball's is zero; the cue ball's `c'₀`.
+    let pressed = if cue_pressed {
+        (
+            (radius * R::of(w.y) - R::of(u.x)) / scale,
+            (-R::of(u.y) - radius * R::of(w.x)) / scale,
+            R::of(2.5),
+        )
     } else {
-        (R::ZERO, R::ZERO)
+        (R::ZERO, R::ZERO, R::of(-2.5))
     };
-    // The pressed object ball's table-contact slip direction `ĉ` (its table friction acts
-    // along `−ĉ`): `x̂` (the seed's eq. (7)) on the first pass. A curved slide (a slip
-    // that turns far, `curved`) takes a second pass with the first pass's `ĉ`
-    // ([`table_contact_slip`]): the friction's `x` component, through the spin about `y`
-    // it gives, changes the slip along `z` (`k_z`), its `y` component, through the ball's
-    // velocity, the slip along `y` (`k_yz`). (With the pieces, at μ 0.15–1 against the
-    // reference: 0.65 % / 1.6 % of U in velocity / R ω before, 0.18 % / 0.31 % now;
-    // `host-tests/examples/kim_grip_inside.rs`, seed 16, 10⁶ scenes; `docs/physics.md`
-    // §4 item 8.)
+    // The pressed ball's table-contact slip direction `ĉ` (its table friction acts along
+    // `−ĉ`): on the first pass `x̂` (the seed's eq. (7) for the object ball; a drawn cue
+    // ball's `c'₀` leans from it by its side component alone); a second pass takes the
+    // direction the first pass's pieces turned through (`curved`,
+    // [`table_contact_slip`]): the friction's `x` component, through the spin about `y`
+    // it gives, changes the slip along `z` (`k_z`), its `y` component, through the
+    // ball's velocity, the slip along `y` (`k_yz`). (With the pieces, at μ 0.15–1
+    // against the reference: 0.65 % / 1.6 % of U in velocity / R ω before, 0.18 % /
+    // 0.31 % now; `host-tests/examples/kim_grip_inside.rs`, seed 16, 10⁶ scenes;
+    // `docs/physics.md` §4 item 8. The cue ball's contact slip turns by up to 27° in the
+    // impact: §4 item 9.)
     let mut table_direction = (R::ONE, R::ZERO);
     let mut first_pass = true;
-    // The table friction per unit pressing impulse along `x̂` on the object ball: `μ_s`
-    // for the object ball pressed, `−μ_ct c'_x` for the cue ball (it acts on the cue
-    // ball, against the approach).
+    // The table friction per unit pressing impulse on the pressed ball, signed as it
+    // enters `K` along `x̂`: `μ_s` for the object ball, `−μ_ct` for the cue ball (it acts
+    // on the cue ball, against the approach); 0 for neither.
     let table_mu = if object_pressed {
         R::of(params.mu_s())
+    } else if cue_pressed {
+        -mu_ct
     } else {
-        -mu_ct * cue_dir_x
+        R::ZERO
     };
     loop {
         let (dir_x, dir_y) = table_direction;
         let k_z = (R::of(2.0) + nu::<R>() - table_mu * dir_x) / nu::<R>();
         // The table friction of the ball pressed into the cloth also moves the slip along
-        // y: Δv_y = 7 J_y + k_yz J_z.
-        let k_yz = if object_pressed {
-            table_mu * dir_y
-        } else {
-            mu_ct * cue_dir_y
-        };
+        // y: Δv_y = 7 J_y + k_yz J_z (`μ_s ĉ_y` for the object ball, `μ_ct ĉ'_y` for the
+        // cue ball).
+        let k_yz = R::abs(table_mu) * dir_y;
         // The slide in pieces (`curved`), whose sliding path's length replaces s* as the
         // grip threshold, and the budget it spends by each normal impulse (`budget`).
         let curved = curved::CurvedSlide::new(slip_y / scale, slip_z / scale, scale, k_yz, k_z);
+        let curved = curved.pressed(pressed);
         let budget = Budget::new(law, &curved);
         // The stick budget is positive (no gearing case here): the slip's largest
         // component is at least 0.7 pm/s (`gearing` above) and `|K⁻¹v| ≥ |v|/‖K‖ ≥ |v|/12`
@@ -155,36 +156,32 @@ pub(super) fn general<R: Real>(params: &Params, impact: &Impact) -> Result<Outco
         } else {
             (stick_y, stick_z, Regime::Gripping)
         };
-        let (table, cue_table_x, cue_table_y) = if object_pressed {
-            // The object ball's table contact slides: its friction is μ_s times the
-            // table's normal impulse on it, which (per unit mass, m/s) is the downward
-            // ball–ball friction −j_z (j_z ≤ 0 here; the max takes rounding out), on
-            // Coulomb's cone. (The rates above only time it for the normal impulse;
-            // their sum, from the first-order budget, fell up to 2 % short of it.)
-            let cone = R::of(params.mu_s()) * R::max(-j_z, R::ZERO);
-            (cone, R::ZERO, R::ZERO)
-        } else {
-            // Pressing impulse on the cue ball = the upward friction impulse on the object.
-            let pressing = R::max(j_z, R::ZERO);
-            (
-                R::ZERO,
-                -mu_ct * pressing * cue_dir_x,
-                -mu_ct * pressing * cue_dir_y,
-            )
-        };
+        // The direction of the pressed ball's table friction: the pieces' sum, or (no
+        // pressing, no slip at its table contact) the pass's own.
         let (t_x, t_y) = marched.table;
         let length = R::sqrt(t_x * t_x + t_y * t_y);
-        let (table_x, table_y) = if object_pressed && length > R::ZERO {
-            let (c_x, c_y) = (t_x / length, t_y / length);
-            if core::mem::take(&mut first_pass) {
-                table_direction = (c_x, c_y);
-                continue;
-            }
-            (table * c_x, -table * c_y)
+        let (c_x, c_y) = if length > R::ZERO {
+            (t_x / length, t_y / length)
         } else {
-            // No table friction, or no slip at the table contact: no direction (the
-            // seed's −x, eq. (7)).
-            (table, R::ZERO)
+            table_direction
+        };
+        // (A ball pressed without friction, `μ_s = 0`, would take the same pass again.)
+        if table_mu != R::ZERO && length > R::ZERO && core::mem::take(&mut first_pass) {
+            table_direction = (c_x, c_y);
+            continue;
+        }
+        // The pressed ball's table contact slides: its friction is its μ times the
+        // table's normal impulse on it, on Coulomb's cone. For the object ball that is
+        // (per unit mass, m/s) the downward ball–ball friction −j_z (j_z ≤ 0 here; the max
+        // takes rounding out); for the cue ball the upward one on the object ball, j_z.
+        // (The rates above only time it for the normal impulse; their sum, from the
+        // first-order budget, fell up to 2 % short of it.)
+        let (table_x, table_y, table, cue_table_x, cue_table_y) = if object_pressed {
+            let cone = R::of(params.mu_s()) * R::max(-j_z, R::ZERO);
+            (cone * c_x, -cone * c_y, cone, R::ZERO, R::ZERO)
+        } else {
+            let cone = mu_ct * R::max(j_z, R::ZERO);
+            (R::ZERO, R::ZERO, R::ZERO, -cone * c_x, -cone * c_y)
         };
         let impulses = SpecificImpulses {
             normal,

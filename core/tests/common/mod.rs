@@ -526,7 +526,7 @@ pub fn energy_rounding(case: &Case, model: Model) -> f64 {
 
 /// Whether `model` may refuse the scene under its declared validity domain
 /// (`cuesight::validity`), recomputed here in f64 from the inputs: `KimGrip` outside
-/// `μ ≤ 1`, `μ·μ_s ≤ 0.2` (a speed-dependent law: its `μ(0)`), `μ·μ_ct ≤ 0.01` or, with `μ_ct > 0` and `μ > 0`, below
+/// `μ ≤ 1`, `μ·μ_s ≤ 0.2` (a speed-dependent law: its `μ(0)`), `μ·μ_ct ≤ 0.05` or, with `μ_ct > 0` and `μ > 0`, below
 /// e* = 0.01; `Kim` where its friction
 /// impulse `μ p₀` exceeds the stick impulse `s* = |K⁻¹ v₀|` (`K = diag(7, k_z)`,
 /// `k_z = 6 − 2.5 μ_s` with the object ball pressed, else 6), with a band of 1e-4
@@ -544,7 +544,7 @@ fn outside_domain(params: &Params, impact: &Impact, model: Model, slack: f64) ->
             let (max_mu, max_mu_mu_s) = (1.0, 0.2);
             mu > max_mu * (1.0 + slack)
                 || mu * params.mu_s() as f64 > max_mu_mu_s * (1.0 + slack)
-                || mu * params.cue_table_friction() as f64 > 0.01 * (1.0 + slack)
+                || mu * params.cue_table_friction() as f64 > 0.05 * (1.0 + slack)
                 || (params.cue_table_friction() > 0.0
                     && params.mu() > 0.0
                     && params.restitution() < 0.01)
