@@ -38,7 +38,11 @@
 //! ```
 
 mod boundary;
+mod collapse;
+mod crossing;
 mod cushion;
+mod jaws;
+mod mouth;
 mod pair;
 mod roots;
 mod run;
@@ -47,6 +51,7 @@ pub mod shots;
 mod track;
 
 pub use cushion::Cushion;
+pub use jaws::{Jaw, Jaws};
 pub use run::{play, simulate, Finish, Launch, Paths};
 
 use crate::error::{check, Field, Result};
@@ -79,6 +84,8 @@ pub struct Setup {
     pub shot: ShotSetup,
     /// The cushions.
     pub cushion: Cushion,
+    /// The pockets' jaws (unused on a table without pockets).
+    pub jaws: Jaws,
     /// Rate (rad/s²) at which spinning friction slows the spin about `z`.
     pub spin_decay: f32,
     /// Event limit ([`MAX_EVENTS`] by default).
@@ -95,6 +102,7 @@ impl Setup {
             model: Model::KimGrip,
         },
         cushion: Cushion::POOL,
+        jaws: Jaws::POOL,
         spin_decay: SPIN_DECAY,
         max_events: MAX_EVENTS,
     };
@@ -117,13 +125,18 @@ impl Setup {
         Self::POOL.with_balls(BallSet::CAROM, Cushion::CAROM)
     }
 
-    /// Snooker: [`Setup::POOL`] with snooker balls and cushions.
+    /// Snooker: [`Setup::POOL`] with snooker balls, cushions and jaws
+    /// ([`Jaws::SNOOKER`]).
     pub fn snooker() -> Result<Self> {
-        Self::POOL.with_balls(BallSet::SNOOKER, Cushion::SNOOKER)
+        Ok(Self {
+            jaws: Jaws::SNOOKER,
+            ..Self::POOL.with_balls(BallSet::SNOOKER, Cushion::SNOOKER)?
+        })
     }
 
     fn check(&self, radius: f32) -> Result<()> {
         check(Field::SpinDecay, self.spin_decay, 0.0, 1000.0, false)?;
+        self.jaws.check()?;
         self.cushion.check_height(radius)
     }
 }

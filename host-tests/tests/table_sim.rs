@@ -60,17 +60,13 @@ fn draw(seed: u64) -> Drawn {
         if scene.balls().len() >= count {
             break;
         }
-        // Placements off the cloth or overlapping are refused; draw again. A ball in a
-        // corner pocket's mouth (past its mouth line) is refused by the simulation: keep
-        // them out of the corners.
+        // Placements off the cloth or overlapping are refused; draw again. Balls in the
+        // pockets' mouths too, so that the jaws are met from every side.
         let (x, y) = (
             rng.random_range(r..table.length() - r),
             rng.random_range(r..table.width() - r),
         );
-        let corner = x.min(table.length() - x) + y.min(table.width() - y);
-        if corner > 0.25 {
-            let _ = scene.add_ball([x, y]);
-        }
+        let _ = scene.add_ball([x, y]);
     }
     let tip = loop {
         let (side, height) = (

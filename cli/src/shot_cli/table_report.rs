@@ -193,6 +193,10 @@ pub fn simulate(
     let setup = sim::Setup {
         shot: request.setup,
         cushion: cushion_for(request)?,
+        jaws: match request.table_name {
+            "snooker" => sim::Jaws::SNOOKER,
+            _ => sim::Jaws::POOL,
+        },
         ..sim::Setup::POOL
     };
     let scene = &request.scene;

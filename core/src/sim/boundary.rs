@@ -1,116 +1,162 @@
-//! Where a ball's centre may go on a table: the rectangle one radius inside the
-//! cushions, with each corner cut off by its pocket's mouth line. That region is convex,
-//! so the first of its edge lines that the centre crosses outwards is where it leaves:
-//! at a cushion, or into a pocket.
+//! Where a ball's centre may go on a table, and what it meets at the edge.
 //!
-//! The pockets are [`Table`]'s target segments (a corner's line across its mouth, a side
-//! pocket's segment on the rail line); a corner's line is extended to the rail lines,
-//! so that the polygon has no gap, and a side pocket takes the part of its rail line
-//! between its ends. The jaws' own shape (their rounded noses, the throat) is not
-//! modelled: a ball that reaches a mouth line drops.
+//! The centre stays in the rectangle one radius inside the cushions' nose lines until it
+//! crosses one of the four rail lines outwards. Along a rail line the cushion runs
+//! between the pockets' noses: a crossing there is a cushion contact. A crossing in a
+//! pocket's gap takes the ball into the pocket's mouth, where it meets the jaws' faces
+//! and rounded noses (cushions too), or drops when its centre enters the pocket's circle
+//! ([`super::jaws`], pooltool 0.6's geometry). Everything a centre meets in a mouth lies
+//! outside the rectangle (the cushions are behind their nose lines, so a centre touching
+//! one is within `R` of a line), so a path whose box stays inside the rectangle meets
+//! nothing.
+//!
+//! A mouth also has a back line at the cushion's width behind each of its rails' nose
+//! lines: a centre that got past the jaws without entering the circle (geometry other
+//! than the presets') drops there, so that no ball leaves the table through a pocket.
 
-use super::roots::first_rise_quadratic;
+pub(crate) use super::crossing::Edge;
+use super::crossing::{position, Line};
+use super::jaws::Jaws;
+use super::mouth::{End, Mouth};
 use super::track::Track;
-use crate::table::Table;
+use crate::table::{Table, MAX_POCKETS};
 use crate::vector::Vec3;
 
-/// What a crossing of the boundary is.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum Edge {
-    /// A cushion whose horizontal unit normal (into the cushion) is given.
-    Cushion(Vec3),
-    /// The pocket of that index in [`Table::pockets`].
-    Pocket(usize),
+/// A stretch of a rail line with no cushion (a pocket's mouth between its noses): a
+/// crossing of rail `rail` whose coordinate along the rail (`x` for the rails along the
+/// length, `y` for the others) lies in `(low, high)` is none.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Gap {
+    rail: usize,
+    low: f32,
+    high: f32,
 }
 
-/// One edge line: `normal · r = offset` with the outward unit `normal`, and what it is.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Line {
-    normal: Vec3,
-    offset: f32,
-    /// `Some(pocket)` for a corner pocket's mouth; `None` for a rail (a side pocket on
-    /// it is found by where the crossing is).
-    pocket: Option<usize>,
-}
-
-/// The edge lines of a table for balls of one radius.
+/// The edges of a table for balls of one radius.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Boundary {
-    lines: [Line; 8],
-    count: usize,
-    /// Side pockets: `(pocket, rail line, low x, high x)`.
-    sides: [(usize, usize, f32, f32); 2],
-    side_count: usize,
+    /// Rails 0–3: `y = R`, `y = W − R`, `x = R`, `x = L − R`.
+    rails: [Line; 4],
+    gaps: [Gap; 2 * MAX_POCKETS],
+    gap_count: usize,
+    mouths: [Mouth; MAX_POCKETS],
+    mouth_count: usize,
 }
 
 impl Boundary {
-    /// The boundary of `table` for balls of `radius` (m).
-    pub fn new(table: &Table, radius: f32) -> Self {
+    /// The boundary of `table` with `jaws` for balls of `radius` (m).
+    pub fn new(table: &Table, jaws: &Jaws, radius: f32) -> Self {
         let (length, width) = (table.length(), table.width());
         let rail = |nx: f32, ny: f32, offset: f32| Line {
             normal: Vec3::new(nx, ny, 0.0),
             offset,
-            pocket: None,
         };
-        // Rails 0–3: y = R, y = W − R, x = R, x = L − R.
-        let mut lines = [
-            rail(0.0, -1.0, -radius),
-            rail(0.0, 1.0, width - radius),
-            rail(-1.0, 0.0, -radius),
-            rail(1.0, 0.0, length - radius),
-            rail(0.0, 0.0, 0.0),
-            rail(0.0, 0.0, 0.0),
-            rail(0.0, 0.0, 0.0),
-            rail(0.0, 0.0, 0.0),
-        ];
-        let mut count = 4;
-        let mut sides = [(0, 0, 0.0, 0.0); 2];
-        let mut side_count = 0;
+        let mut boundary = Self {
+            rails: [
+                rail(0.0, -1.0, -radius),
+                rail(0.0, 1.0, width - radius),
+                rail(-1.0, 0.0, -radius),
+                rail(1.0, 0.0, length - radius),
+            ],
+            gaps: [Gap::default(); 2 * MAX_POCKETS],
+            gap_count: 0,
+            mouths: [Mouth::default(); MAX_POCKETS],
+            mouth_count: 0,
+        };
         let centre = Vec3::new(0.5 * length, 0.5 * width, 0.0);
         for (index, pocket) in table.pockets().iter().enumerate() {
-            let along = pocket.b - pocket.a;
-            if along.y == 0.0 {
-                // A side pocket on the near (y = R) or far rail.
-                let rail = if pocket.a.y < centre.y { 0 } else { 1 };
-                let (low, high) = if pocket.a.x < pocket.b.x {
-                    (pocket.a.x, pocket.b.x)
+            let at = pocket.centre();
+            // The rail along the length (0 or 1) and, for a corner, the one across it
+            // (2 or 3), with their outward normals.
+            let (long_rail, out_y) = if at.y < centre.y {
+                (0, Vec3::new(0.0, -1.0, 0.0))
+            } else {
+                (1, Vec3::new(0.0, 1.0, 0.0))
+            };
+            let nose_line_y = if long_rail == 0 { 0.0 } else { width };
+            let mouth_width = (pocket.b - pocket.a).length();
+            let (ends, jaw, circle, backs) = if pocket.b.y == pocket.a.y {
+                // A side pocket: its mouth's ends on the rail's nose line.
+                let half = 0.5 * mouth_width;
+                let x = Vec3::new(1.0, 0.0, 0.0);
+                let middle = Vec3::new(at.x, nose_line_y, 0.0);
+                let ends = [
+                    End::new(middle - x * half, -x, out_y, long_rail),
+                    End::new(middle + x * half, x, out_y, long_rail),
+                ];
+                let circle = middle + out_y * jaws.side.depth;
+                let jaw = (&jaws.side, jaws.side.angle);
+                (ends, jaw, circle, [(out_y, middle), (out_y, middle)])
+            } else {
+                // A corner: the mouth's ends `mouth / √2` from the corner along each rail.
+                let (cross_rail, out_x, corner_x) = if at.x < centre.x {
+                    (2, Vec3::new(-1.0, 0.0, 0.0), 0.0)
                 } else {
-                    (pocket.b.x, pocket.a.x)
+                    (3, Vec3::new(1.0, 0.0, 0.0), length)
                 };
-                if side_count < sides.len() {
-                    sides[side_count] = (index, rail, low, high);
-                    side_count += 1;
-                }
-            } else if count < lines.len() {
-                let length = along.length();
-                let mut normal = Vec3::new(along.y / length, -along.x / length, 0.0);
-                if normal.dot(pocket.a - centre) < 0.0 {
-                    normal = -normal;
-                }
-                lines[count] = Line {
-                    normal,
-                    offset: normal.dot(pocket.a),
-                    pocket: Some(index),
+                let corner = Vec3::new(corner_x, nose_line_y, 0.0);
+                let jaw_distance = mouth_width * core::f32::consts::FRAC_1_SQRT_2;
+                let ends = [
+                    End::new(corner - out_x * jaw_distance, -out_x, out_y, long_rail),
+                    End::new(corner - out_y * jaw_distance, -out_y, out_x, cross_rail),
+                ];
+                let circle = corner
+                    + (out_x + out_y) * (jaws.corner.depth * core::f32::consts::FRAC_1_SQRT_2);
+                let jaw = (&jaws.corner, 45.0 + jaws.corner.angle);
+                (ends, jaw, circle, [(out_y, corner), (out_x, corner)])
+            };
+            let (mouth, edges) = Mouth::new(
+                index,
+                &ends,
+                jaw,
+                circle,
+                &backs,
+                jaws.cushion_width,
+                radius,
+            );
+            // The open stretches of the rail lines: a side pocket's between its noses, a
+            // corner's from each nose to the corner.
+            let open: [Option<(usize, f32, f32)>; 2] = if ends[0].rail == ends[1].rail {
+                [Some((ends[0].rail, edges[0], edges[1])), None]
+            } else {
+                let half_line = |k: usize| {
+                    let end = &ends[k];
+                    let beyond = if end.rail < 2 {
+                        end.toward_rail.x
+                    } else {
+                        end.toward_rail.y
+                    };
+                    if beyond > 0.0 {
+                        (end.rail, f32::NEG_INFINITY, edges[k])
+                    } else {
+                        (end.rail, edges[k], f32::INFINITY)
+                    }
                 };
-                count += 1;
+                [Some(half_line(0)), Some(half_line(1))]
+            };
+            for (rail, low, high) in open.into_iter().flatten() {
+                if boundary.gap_count < boundary.gaps.len() {
+                    boundary.gaps[boundary.gap_count] = Gap { rail, low, high };
+                    boundary.gap_count += 1;
+                }
+            }
+            if boundary.mouth_count < boundary.mouths.len() {
+                boundary.mouths[boundary.mouth_count] = mouth;
+                boundary.mouth_count += 1;
             }
         }
-        Self {
-            lines,
-            count,
-            sides,
-            side_count,
-        }
+        boundary
     }
 
-    /// The first time at or after `now` at which `track`'s centre crosses an edge line
-    /// outwards, and the edge. `None` if it stops inside.
+    /// The first time at or after `now` at which `track`'s centre meets a cushion or
+    /// drops into a pocket, and which. `None` if it stops first.
     pub fn exit(&self, track: &Track, now: f32) -> Option<(f32, Edge)> {
-        // Lines the box around the whole path stays inside of cannot be crossed.
+        // Rails the box around the whole path stays inside of cannot be crossed, and a
+        // mouth whose box it misses cannot be entered.
         let (low, high) = (track.bounds.min, track.bounds.max);
-        let mut reachable = [false; 8];
+        let mut rails = [false; 4];
         let mut any = false;
-        for (reach, line) in reachable.iter_mut().zip(&self.lines[..self.count]) {
+        for (reach, line) in rails.iter_mut().zip(&self.rails) {
             let n = line.normal;
             let farthest = n.x * if n.x > 0.0 { high.x } else { low.x }
                 + n.y * if n.y > 0.0 { high.y } else { low.y };
@@ -120,46 +166,56 @@ impl Boundary {
         if !any {
             return None;
         }
+        let mut mouths = [false; MAX_POCKETS];
+        for (reach, mouth) in mouths.iter_mut().zip(&self.mouths[..self.mouth_count]) {
+            *reach = !(low.x > mouth.max.x
+                || high.x < mouth.min.x
+                || low.y > mouth.max.y
+                || high.y < mouth.min.y);
+        }
         for piece in track.pieces() {
             if piece.to <= now || piece.to == f32::INFINITY {
                 continue; // past, or the rest at the end: no crossing
             }
             let from = if piece.from > now { piece.from } else { now };
-            let (p, q, s) = piece.at(from);
+            let state = piece.at(from);
             let span = piece.to - from;
-            let mut best: Option<(f32, usize)> = None;
-            for (index, line) in self.lines[..self.count].iter().enumerate() {
-                if !reachable[index] {
+            let mut best: Option<(f32, Edge)> = None;
+            let mut consider = |sigma: f32, edge: Edge| {
+                if best.is_none_or(|(b, _)| sigma < b) {
+                    best = Some((sigma, edge));
+                }
+            };
+            for (index, line) in self.rails.iter().enumerate() {
+                if !rails[index] {
                     continue;
                 }
-                let n = line.normal;
-                let c = [n.dot(p) - line.offset, n.dot(q), n.dot(s)];
-                let value = |x: f32| n.dot(p + q * x + s * (x * x)) - line.offset;
-                if let Some(sigma) = first_rise_quadratic(c, span, value) {
-                    if best.is_none_or(|(b, _)| sigma < b) {
-                        best = Some((sigma, index));
+                if let Some(sigma) = line.crossing(state, span) {
+                    let at = position(state, sigma);
+                    let along = if index < 2 { at.x } else { at.y };
+                    let open = self.gaps[..self.gap_count]
+                        .iter()
+                        .any(|g| g.rail == index && along > g.low && along < g.high);
+                    if !open {
+                        consider(sigma, Edge::Cushion(line.normal));
                     }
                 }
             }
-            if let Some((sigma, index)) = best {
-                let line = self.lines[index];
-                let edge = match line.pocket {
-                    Some(pocket) => Edge::Pocket(pocket),
-                    None => {
-                        let at = p + q * sigma + s * (sigma * sigma);
-                        self.sides[..self.side_count]
-                            .iter()
-                            .find(|(_, rail, low, high)| {
-                                *rail == index && at.x >= *low && at.x <= *high
-                            })
-                            .map_or(Edge::Cushion(line.normal), |(pocket, ..)| {
-                                Edge::Pocket(*pocket)
-                            })
-                    }
-                };
+            for (mouth, _) in self.mouths[..self.mouth_count]
+                .iter()
+                .zip(&mouths)
+                .filter(|(_, &reach)| reach)
+            {
+                mouth.meet(state, span, &mut consider);
+            }
+            if let Some((sigma, edge)) = best {
                 return Some((from + sigma, edge));
             }
         }
         None
     }
 }
+
+#[cfg(test)]
+#[path = "boundary/tests.rs"]
+mod tests;

@@ -2,6 +2,7 @@
 //! resolution.
 
 use super::boundary::{Boundary, Edge};
+use super::collapse::{along_cushion, jam, JAM_EVENTS, LOCK_SPEED, LOCK_TIME};
 use super::pair::{closing_speed, contact_time, lock, resolve, State};
 use super::schedule::Schedule;
 use super::track::Track;
@@ -74,15 +75,11 @@ struct Ball {
     exit_from: f32,
     /// When it last hit a cushion (s).
     last_cushion: Option<f32>,
+    /// When it last took part in an event (s), and how many events it has had at that
+    /// very time ([`JAM_EVENTS`](super::collapse::JAM_EVENTS)).
+    last_event: f32,
+    events_at_once: u16,
 }
-
-/// Two balls that collide again within this time (s) of their last collision, closing
-/// slower than [`LOCK_SPEED`], are locked together ([`lock`]); a ball that hits a cushion
-/// so soon after its last cushion (the same one, or the other of a corner) and so slowly
-/// runs along it ([`along_cushion`]).
-const LOCK_TIME: f32 = 0.01;
-/// See [`LOCK_TIME`] (m/s).
-const LOCK_SPEED: f32 = 0.01;
 
 /// Play `stroke` on `scene` (the cue ball is ball 0) and simulate the whole table.
 /// `sink` sees every event as it happens, with the paths from it on.
@@ -110,12 +107,12 @@ pub fn play(
 /// Simulate `scene`'s balls, at rest but for `launches`, until every ball rests or
 /// drops. `sink` sees every event as it happens, with the paths from it on.
 ///
-/// The scene keeps every ball on the cloth and no two overlapping. A ball may rest past
-/// a corner pocket's mouth line, hanging in the jaws: it stays until something moves
-/// it, and drops at once if that is outwards.
+/// The scene keeps every ball on the cloth and no two overlapping. A ball may come to
+/// rest in a pocket's mouth, hanging in the jaws, until something moves it.
 ///
 /// Errors: the setup's ball radius is not the scene's ([`Field::SetupRadius`]), its
-/// cushion or spin decay is out of range ([`Field::Cushion`], [`Field::SpinDecay`]), a
+/// cushion, jaws or spin decay is out of range ([`Field::Cushion`],
+/// [`Field::SpinDecay`]), a
 /// launch names no ball ([`Field::BallIndex`]) or has a velocity or spin out of range
 /// ([`Field::Velocity`], [`Field::Spin`]), the
 /// `Auto` tolerance is out of range ([`Field::Tolerance`]), a collision's input is out
@@ -137,7 +134,7 @@ pub fn simulate(
     }
     setup.check(radius)?;
     check_model(setup.shot.model)?;
-    let boundary = Boundary::new(scene.table(), radius);
+    let boundary = Boundary::new(scene.table(), &setup.jaws, radius);
     let cloth = &setup.shot.cloth;
     let mut balls: heapless::Vec<Ball, MAX_BALLS> = heapless::Vec::new();
     for &position in scene.balls() {
@@ -149,6 +146,8 @@ pub fn simulate(
             exit: (f32::INFINITY, None),
             exit_from: 0.0,
             last_cushion: None,
+            last_event: f32::NEG_INFINITY,
+            events_at_once: 0,
         };
         // The scene holds at most MAX_BALLS.
         let _ = balls.push(ball);
@@ -327,6 +326,25 @@ pub fn simulate(
             }
         };
         if happened {
+            for ball in core::iter::once(i).chain(other) {
+                let b = &mut balls[ball];
+                b.events_at_once = if b.last_event == now {
+                    b.events_at_once.saturating_add(1)
+                } else {
+                    1
+                };
+                b.last_event = now;
+                if b.events_at_once > JAM_EVENTS {
+                    let (velocity, spin) = jam(b.track.spin_at(now));
+                    let at_rest = State {
+                        position: b.track.position_at(now),
+                        velocity,
+                        spin,
+                    };
+                    b.track = restart(&at_rest)?;
+                    dirty |= 1 << ball;
+                }
+            }
             events += 1;
             let event = Event {
                 time: now,
@@ -347,22 +365,6 @@ pub fn simulate(
         time: now,
         events: events.into(),
     })
-}
-
-/// A ball pressed into a cushion by its own slip (side spin or a sliding curve into
-/// it), whose rebounds would otherwise repeat without end: it keeps the velocity and
-/// spin parallel to the cushion and loses their parts that move the contact into it
-/// (the normal velocity, and the spin about the horizontal along the cushion, which
-/// drives the cloth slip across it), so it runs along the cushion. Both parts are
-/// removed, so kinetic energy does not grow; the cushion's friction while the ball runs
-/// along it is not modelled.
-fn along_cushion(velocity: Vec3, spin: Vec3, normal: Vec3) -> (Vec3, Vec3) {
-    let along = Vec3::new(-normal.y, normal.x, 0.0); // ẑ × n
-    let velocity = Vec3::new(velocity.x, velocity.y, 0.0);
-    (
-        velocity - normal * velocity.dot(normal),
-        spin - along * spin.dot(along),
-    )
 }
 
 /// The next contact of `a` and `b` from `from` on, searched until the first exit of

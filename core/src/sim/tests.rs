@@ -220,12 +220,12 @@ fn a_three_cushion_carom_shot_plays_to_the_end() {
     assert!(end.positions().iter().all(Option::is_some));
 }
 
-/// A ball resting past a corner's mouth line (hanging in the jaws; the scene accepts it:
-/// it is on the cloth) stays until it is hit, then drops at once if pushed outwards.
+/// A ball resting in a corner's mouth (its centre 85 mm from the corner, inside the
+/// rails' nose lines) stays until it is hit, then drops when pushed into the pocket.
 #[test]
-fn a_ball_hanging_in_the_jaws_drops_when_hit_towards_the_pocket() {
+fn a_ball_in_a_corners_mouth_drops_when_hit_towards_the_pocket() {
     let mut scene = Scene::new(Table::pool(), R, [0.4, 0.4]).unwrap();
-    scene.add_ball([0.06, 0.06]).unwrap(); // x + y = 0.12, the mouth line's 0.163
+    scene.add_ball([0.06, 0.06]).unwrap();
     let stroke = Stroke::new(2.0, TipOffset::CENTRE, [-1.0, -1.0]).unwrap();
     let (kinds, _, end) = first_events::<3>(&scene, &stroke);
     assert_eq!(kinds[0], Some((EventKind::Ball, 0)), "{kinds:?}");
