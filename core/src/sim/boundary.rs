@@ -30,6 +30,8 @@ struct Gap {
     rail: usize,
     low: f32,
     high: f32,
+    /// The mouth it opens into (index in [`Boundary`]'s mouths).
+    mouth: usize,
 }
 
 /// The edges of a table for balls of one radius.
@@ -41,6 +43,9 @@ pub(crate) struct Boundary {
     gap_count: usize,
     mouths: [Mouth; MAX_POCKETS],
     mouth_count: usize,
+    /// The mouths whose drop circle reaches into the rectangle (bit `k` for mouth `k`;
+    /// snooker's corner circles, pooltool's 4" ones 36 mm back, do).
+    intruding: u32,
 }
 
 impl Boundary {
@@ -62,6 +67,7 @@ impl Boundary {
             gap_count: 0,
             mouths: [Mouth::default(); MAX_POCKETS],
             mouth_count: 0,
+            intruding: 0,
         };
         let centre = Vec3::new(0.5 * length, 0.5 * width, 0.0);
         for (index, pocket) in table.pockets().iter().enumerate() {
@@ -136,11 +142,25 @@ impl Boundary {
             };
             for (rail, low, high) in open.into_iter().flatten() {
                 if boundary.gap_count < boundary.gaps.len() {
-                    boundary.gaps[boundary.gap_count] = Gap { rail, low, high };
+                    boundary.gaps[boundary.gap_count] = Gap {
+                        rail,
+                        low,
+                        high,
+                        mouth: boundary.mouth_count,
+                    };
                     boundary.gap_count += 1;
                 }
             }
             if boundary.mouth_count < boundary.mouths.len() {
+                // The rectangle's point nearest the circle's centre.
+                let nearest = Vec3::new(
+                    mouth.centre.x.clamp(radius, length - radius),
+                    mouth.centre.y.clamp(radius, width - radius),
+                    0.0,
+                );
+                if (nearest - mouth.centre).length() < mouth.radius {
+                    boundary.intruding |= 1 << boundary.mouth_count;
+                }
                 boundary.mouths[boundary.mouth_count] = mouth;
                 boundary.mouth_count += 1;
             }
@@ -151,8 +171,7 @@ impl Boundary {
     /// The first time at or after `now` at which `track`'s centre meets a cushion or
     /// drops into a pocket, and which. `None` if it stops first.
     pub fn exit(&self, track: &Track, now: f32) -> Option<(f32, Edge)> {
-        // Rails the box around the whole path stays inside of cannot be crossed, and a
-        // mouth whose box it misses cannot be entered.
+        // Rails the box around the whole path stays inside of cannot be crossed.
         let (low, high) = (track.bounds.min, track.bounds.max);
         let mut rails = [false; 4];
         let mut any = false;
@@ -163,15 +182,15 @@ impl Boundary {
             *reach = farthest >= line.offset;
             any |= *reach;
         }
-        if !any {
-            return None;
+        // Drop circles that reach into the rectangle, if the path's box meets theirs.
+        let mut intruding = 0u32;
+        for (k, mouth) in self.mouths[..self.mouth_count].iter().enumerate() {
+            if self.intruding & (1 << k) != 0 && mouth.meets_box(low, high) {
+                intruding |= 1 << k;
+            }
         }
-        let mut mouths = [false; MAX_POCKETS];
-        for (reach, mouth) in mouths.iter_mut().zip(&self.mouths[..self.mouth_count]) {
-            *reach = !(low.x > mouth.max.x
-                || high.x < mouth.min.x
-                || low.y > mouth.max.y
-                || high.y < mouth.min.y);
+        if !any && intruding == 0 {
+            return None;
         }
         for piece in track.pieces() {
             if piece.to <= now || piece.to == f32::INFINITY {
@@ -186,6 +205,21 @@ impl Boundary {
                     best = Some((sigma, edge));
                 }
             };
+            // A centre meets a mouth's jaws or circle only outside the rectangle (but
+            // for a drop circle that reaches into it): in a mouth the piece starts in,
+            // or in one whose gap it crosses into (a piece crosses each rail line
+            // outwards once at most: its distance is a quadratic). So only those mouths
+            // are searched, and those whose circle reaches in if the path's box meets
+            // theirs.
+            let mut entered = intruding;
+            let start = state.0;
+            if self.rails.iter().any(|l| l.normal.dot(start) > l.offset) {
+                for (k, mouth) in self.mouths[..self.mouth_count].iter().enumerate() {
+                    if mouth.holds(start) {
+                        entered |= 1 << k;
+                    }
+                }
+            }
             for (index, line) in self.rails.iter().enumerate() {
                 if !rails[index] {
                     continue;
@@ -193,20 +227,19 @@ impl Boundary {
                 if let Some(sigma) = line.crossing(state, span) {
                     let at = position(state, sigma);
                     let along = if index < 2 { at.x } else { at.y };
-                    let open = self.gaps[..self.gap_count]
+                    let gap = self.gaps[..self.gap_count]
                         .iter()
-                        .any(|g| g.rail == index && along > g.low && along < g.high);
-                    if !open {
-                        consider(sigma, Edge::Cushion(line.normal));
+                        .find(|g| g.rail == index && along > g.low && along < g.high);
+                    match gap {
+                        Some(gap) => entered |= 1 << gap.mouth,
+                        None => consider(sigma, Edge::Cushion(line.normal)),
                     }
                 }
             }
-            for (mouth, _) in self.mouths[..self.mouth_count]
-                .iter()
-                .zip(&mouths)
-                .filter(|(_, &reach)| reach)
-            {
-                mouth.meet(state, span, &mut consider);
+            for (k, mouth) in self.mouths[..self.mouth_count].iter().enumerate() {
+                if entered & (1 << k) != 0 {
+                    mouth.meet(state, span, &mut consider);
+                }
             }
             if let Some((sigma, edge)) = best {
                 return Some((from + sigma, edge));

@@ -143,6 +143,16 @@ impl Mouth {
 
     /// Everything of this mouth that the centre meets on a piece (state `(p, q, s)`, for
     /// `span` s), each passed to `consider` with its time from the piece's start.
+    /// `true` when `p` is in this mouth's box.
+    pub fn holds(&self, p: Vec3) -> bool {
+        p.x >= self.min.x && p.x <= self.max.x && p.y >= self.min.y && p.y <= self.max.y
+    }
+
+    /// `true` when the box from `low` to `high` meets this mouth's box.
+    pub fn meets_box(&self, low: Vec3, high: Vec3) -> bool {
+        !(low.x > self.max.x || high.x < self.min.x || low.y > self.max.y || high.y < self.min.y)
+    }
+
     pub fn meet(&self, state: (Vec3, Vec3, Vec3), span: f32, consider: &mut impl FnMut(f32, Edge)) {
         for face in &self.faces {
             if face.low >= face.high {

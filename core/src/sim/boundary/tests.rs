@@ -153,3 +153,39 @@ fn a_carom_table_is_all_cushion() {
     let boundary = Boundary::new(&Table::carom(), &Jaws::POOL, BallSet::CAROM.radius);
     assert_eq!((boundary.gap_count, boundary.mouth_count), (0, 0));
 }
+
+/// Snooker's corner circles (pooltool's 4", 36 mm back) reach into the rectangle: a ball
+/// rolled gently into a corner drops there without reaching a rail line.
+#[test]
+fn a_drop_circle_that_reaches_onto_the_cloth_is_searched_inside_too() {
+    let r = BallSet::SNOOKER.radius;
+    let boundary = Boundary::new(&Table::snooker(), &Jaws::SNOOKER, r);
+    assert_eq!(boundary.intruding & 1, 1, "{:b}", boundary.intruding);
+    // The slowest roll down the corner's diagonal that ends within the circle (centre
+    // 0.0255 m beyond the corner on both axes, radius 0.1016 m) but inside the rails.
+    let entry =
+        0.1016 * core::f32::consts::FRAC_1_SQRT_2 - 0.036 * core::f32::consts::FRAC_1_SQRT_2;
+    let track = (1..400)
+        .map(|step| {
+            let speed = 0.005 * step as f32;
+            let v = Vec3::new(-speed, -speed, 0.0) * core::f32::consts::FRAC_1_SQRT_2;
+            let spin = Vec3::new(-v.y / r, v.x / r, 0.0);
+            let start = Vec3::new(0.3, 0.3, 0.0);
+            Track::new(
+                Motion::new(start, v, spin, r, &Cloth::TYPICAL).unwrap(),
+                0.0,
+                0.0,
+            )
+        })
+        .find(|track| track.motion.rest().x < entry - 0.002)
+        .unwrap();
+    let rest = track.motion.rest();
+    assert!(
+        rest.x > r && rest.y > r,
+        "{rest:?} should be inside the rails"
+    );
+    let (_, edge) = boundary.exit(&track, 0.0).unwrap();
+    assert_eq!(edge, Edge::Pocket(0));
+    // Pool's circles stay behind the rails.
+    assert_eq!(pool().intruding, 0);
+}
