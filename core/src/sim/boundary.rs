@@ -212,8 +212,11 @@ impl Boundary {
             // are searched, and those whose circle reaches in if the path's box meets
             // theirs.
             let mut entered = intruding;
+            // From when each is searched: the piece's start if it starts in the mouth or
+            // the circle reaches onto the cloth, else the gap crossing.
+            let mut entered_at = [0.0f32; MAX_POCKETS];
             let start = state.0;
-            if self.rails.iter().any(|l| l.normal.dot(start) > l.offset) {
+            if self.mouth_count > 0 && self.rails.iter().any(|l| l.normal.dot(start) > l.offset) {
                 for (k, mouth) in self.mouths[..self.mouth_count].iter().enumerate() {
                     if mouth.holds(start) {
                         entered |= 1 << k;
@@ -225,21 +228,41 @@ impl Boundary {
                     continue;
                 }
                 if let Some(sigma) = line.crossing(state, span) {
-                    let at = position(state, sigma);
-                    let along = if index < 2 { at.x } else { at.y };
-                    let gap = self.gaps[..self.gap_count]
-                        .iter()
-                        .find(|g| g.rail == index && along > g.low && along < g.high);
+                    let gap = if self.gap_count == 0 {
+                        None
+                    } else {
+                        let at = position(state, sigma);
+                        let along = if index < 2 { at.x } else { at.y };
+                        self.gaps[..self.gap_count]
+                            .iter()
+                            .find(|g| g.rail == index && along > g.low && along < g.high)
+                    };
                     match gap {
-                        Some(gap) => entered |= 1 << gap.mouth,
+                        Some(gap) => {
+                            let bit = 1 << gap.mouth;
+                            let at = &mut entered_at[gap.mouth];
+                            if entered & bit == 0 || sigma < *at {
+                                *at = sigma;
+                            }
+                            entered |= bit;
+                        }
                         None => consider(sigma, Edge::Cushion(line.normal)),
                     }
                 }
             }
             for (k, mouth) in self.mouths[..self.mouth_count].iter().enumerate() {
-                if entered & (1 << k) != 0 {
-                    mouth.meet(state, span, &mut consider);
+                if entered == 0 {
+                    break;
                 }
+                if entered & (1 << k) == 0 {
+                    continue;
+                }
+                let (_, q, s) = state;
+                let from = entered_at[k];
+                let later = (position(state, from), q + s * (2.0 * from), s);
+                mouth.meet(later, span - from, &mut |sigma, edge| {
+                    consider(from + sigma, edge)
+                });
             }
             if let Some((sigma, edge)) = best {
                 return Some((from + sigma, edge));

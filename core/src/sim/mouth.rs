@@ -153,6 +153,7 @@ impl Mouth {
         !(low.x > self.max.x || high.x < self.min.x || low.y > self.max.y || high.y < self.min.y)
     }
 
+    #[inline(never)]
     pub fn meet(&self, state: (Vec3, Vec3, Vec3), span: f32, consider: &mut impl FnMut(f32, Edge)) {
         for face in &self.faces {
             if face.low >= face.high {

@@ -17,6 +17,7 @@
 //! impulse; the models' table-contact terms (cue-ball/table friction during the impact,
 //! seed §4) are evaluated as if `b` were at rest, which they are not when it moves.
 
+use super::crossing::within_reach;
 use super::roots::first_rise;
 use super::track::{piece_at, Track};
 use crate::error::Result;
@@ -98,52 +99,6 @@ pub(crate) fn contact_time(
         from = to;
     }
     None
-}
-
-/// `false` when the difference `d(σ) = dp + dq σ + ds σ²`, `σ ∈ [0, span]`, surely
-/// stays farther than `reach` from the origin. It is the quadratic Bézier curve of the
-/// control points `B₀ = dp`, `B₁ = dp + dq span/2`, `B₂ = dp + dq span + ds span²`,
-/// so (1) it lies in their box, and (2) it is the chord from `B₀` to `B₂` plus
-/// `2t(1 − t) (B₁ − M)` with `M` the chord's midpoint, so within `|B₁ − M|/2` of the
-/// chord: farther than `reach` if the chord is farther than `reach + |B₁ − M|/2`. The
-/// box is the cheap test, the chord the tight one (a ball rolling past another).
-fn within_reach(dp: Vec3, dq: Vec3, ds: Vec3, span: f32, reach: f32) -> bool {
-    let middle = dp + dq * (0.5 * span);
-    let end = dp + dq * span + ds * (span * span);
-    let low_x = min3(dp.x, middle.x, end.x);
-    let high_x = -min3(-dp.x, -middle.x, -end.x);
-    let low_y = min3(dp.y, middle.y, end.y);
-    let high_y = -min3(-dp.y, -middle.y, -end.y);
-    // NaN (an unbounded span) fails every comparison: no rejection.
-    if low_x > reach || high_x < -reach || low_y > reach || high_y < -reach {
-        return false;
-    }
-    let chord = Vec3::new(end.x - dp.x, end.y - dp.y, 0.0);
-    let length_squared = chord.dot(chord);
-    let t = if length_squared > 0.0 {
-        // NaN stays NaN through `clamp`, and fails the comparison below: no rejection.
-        (-Vec3::new(dp.x, dp.y, 0.0).dot(chord) / length_squared).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let closest = Vec3::new(dp.x + chord.x * t, dp.y + chord.y * t, 0.0);
-    let bulge = Vec3::new(
-        middle.x - 0.5 * (dp.x + end.x),
-        middle.y - 0.5 * (dp.y + end.y),
-        0.0,
-    );
-    let margin = reach + 0.5 * bulge.length();
-    let far = closest.dot(closest) > margin * margin;
-    !far
-}
-
-fn min3(a: f32, b: f32, c: f32) -> f32 {
-    let m = if a < b { a } else { b };
-    if m < c {
-        m
-    } else {
-        c
-    }
 }
 
 /// Closing speed of `a` and `b` along their line of centres (m/s; negative when they
