@@ -709,7 +709,23 @@ fn the_whole_table_is_reported_in_final_and_events() {
         );
         let balls = event["balls"].as_array().unwrap();
         assert_eq!(balls.len(), if kind == "ball" { 2 } else { 1 }, "{event}");
-        assert_eq!(event.get("pocket").is_some(), kind == "pocket", "{event}");
+        // `pocket` names the pocket of a drop, and of a cushion that is its jaw: a
+        // centre beyond the rails' lines (R = 0.028575 m in from the cushions).
+        let outside = {
+            let (x, y) = (
+                event["position"][0].as_f64().unwrap(),
+                event["position"][1].as_f64().unwrap(),
+            );
+            // A rail's contact is on its line, within rounding.
+            let r = 0.028575 - 1e-6;
+            x < r || x > 2.54 - r || y < r || y > 1.27 - r
+        };
+        let jaw = kind == "cushion" && outside;
+        assert_eq!(
+            event.get("pocket").is_some(),
+            kind == "pocket" || jaw,
+            "{event}"
+        );
     }
     for (i, end) in finals.iter().enumerate() {
         let dropped = events

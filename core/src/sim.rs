@@ -169,6 +169,9 @@ pub struct Event {
     pub other: Option<usize>,
     /// Centre of `ball` at the event (m).
     pub position: Vec3,
+    /// For a cushion event at a pocket's jaw (its face or rounded nose), the pocket's
+    /// index ([`crate::table::Table::pockets`]); `None` for a rail and other events.
+    pub jaw: Option<usize>,
 }
 
 #[cfg(test)]

@@ -432,8 +432,20 @@ impl ShotReport {
         );
         if let (Some(whole), Some(target)) = (&self.target_whole_table, &self.target) {
             let object = target.object;
+            let rattles = match whole.jaw_contacts {
+                1 => " off its jaw".to_owned(),
+                n => format!(" after {n} contacts with its jaws"),
+            };
             let verdict = match (whole.pocketed, whole.first, whole.in_the_way) {
+                (true, ..) if whole.jaw_contacts > 0 => format!(
+                    "ball {object} drops into {}{rattles}",
+                    names.phrase(target.pocket)
+                ),
                 (true, ..) => format!("ball {object} drops into {}", names.phrase(target.pocket)),
+                (false, "cushion", _) if whole.jaw_contacts > 0 => format!(
+                    "the jaws of {} turn ball {object} away",
+                    names.phrase(target.pocket)
+                ),
                 (false, "ball", Some(ball)) => {
                     format!("ball {ball} is in the way: ball {object} meets it before the pocket")
                 }

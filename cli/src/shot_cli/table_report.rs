@@ -45,7 +45,8 @@ pub struct EventReport {
     pub balls: Vec<usize>,
     /// Centre of the (first) ball at the event (m).
     pub position: [f32; 2],
-    /// The pocket's index, for `pocket`.
+    /// The pocket's index, for `pocket`, and for a `cushion` that is one of the
+    /// pocket's jaws (its face or rounded nose).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pocket: Option<usize>,
 }
@@ -100,12 +101,17 @@ impl ThreeCushion {
 }
 
 /// The chosen object ball and pocket on the whole table: whether the ball drops there,
-/// and if not, what it meets first after the cue ball sends it off.
+/// and if not, what it meets first after the cue ball sends it off. Contacts with the
+/// chosen pocket's own jaws on the way in are counted (`jaw_contacts`), not taken as
+/// what it meets first: a ball that rattles in is pocketed.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct WholeTarget {
     /// Whether the object ball drops into the chosen pocket before anything else
-    /// touches it.
+    /// touches it (the pocket's own jaws aside).
     pub pocketed: bool,
+    /// How many times it touches the chosen pocket's jaws before it drops or meets
+    /// something else.
+    pub jaw_contacts: usize,
     /// The ball in its way: the first ball it hits after the cue ball's contact (or the
     /// ball that hits it), if that comes first.
     pub in_the_way: Option<usize>,
@@ -125,32 +131,32 @@ impl WholeTarget {
         else {
             return Self {
                 pocketed: false,
+                jaw_contacts: 0,
                 in_the_way: None,
                 first: "none",
             };
         };
-        let next = events[start + 1..].iter().find(|e| involves(e));
-        match next {
-            Some(e) if e.kind == "pocket" => Self {
-                pocketed: e.pocket == Some(pocket),
-                in_the_way: None,
-                first: "pocket",
-            },
-            Some(e) if e.kind == "ball" => Self {
-                pocketed: false,
-                in_the_way: e.balls.iter().copied().find(|&b| b != object),
-                first: "ball",
-            },
-            Some(e) => Self {
-                pocketed: false,
-                in_the_way: None,
-                first: e.kind,
-            },
-            None => Self {
-                pocketed: false,
-                in_the_way: None,
-                first: "rest",
-            },
+        let jaw = |e: &EventReport| e.kind == "cushion" && e.pocket == Some(pocket);
+        let mut after = events[start + 1..].iter().filter(|e| involves(e));
+        let jaw_contacts = after.clone().take_while(|e| jaw(e)).count();
+        let next = after.find(|e| !jaw(e));
+        let (pocketed, in_the_way, first) = match next {
+            Some(e) if e.kind == "pocket" => (e.pocket == Some(pocket), None, "pocket"),
+            // Turned away by the jaws: they are what it met first.
+            _ if jaw_contacts > 0 => (false, None, "cushion"),
+            Some(e) if e.kind == "ball" => (
+                false,
+                e.balls.iter().copied().find(|&b| b != object),
+                "ball",
+            ),
+            Some(e) => (false, None, e.kind),
+            None => (false, None, "rest"),
+        };
+        Self {
+            pocketed,
+            jaw_contacts,
+            in_the_way,
+            first,
         }
     }
 }
@@ -240,7 +246,7 @@ pub fn simulate(
             position: [event.position.x, event.position.y],
             pocket: match event.kind {
                 EventKind::Pocket(p) => Some(p),
-                _ => None,
+                _ => event.jaw,
             },
         });
     })
@@ -283,6 +289,57 @@ mod tests {
             position: [0.0, 0.0],
             pocket: None,
         }
+    }
+
+    /// A ball that rattles off its pocket's jaws and drops is pocketed; one the jaws
+    /// turn away is not, and the jaws are what it met; another pocket's jaw is a
+    /// cushion like any.
+    #[test]
+    fn the_chosen_pockets_jaws_are_counted_not_taken_as_the_first_contact() {
+        let jaw = |pocket: usize| EventReport {
+            pocket: Some(pocket),
+            ..event("cushion", &[1])
+        };
+        let drop = |pocket: usize| EventReport {
+            pocket: Some(pocket),
+            ..event("pocket", &[1])
+        };
+        let hit = event("ball", &[0, 1]);
+        let rattled_in = [hit.clone(), jaw(3), jaw(3), drop(3)];
+        assert_eq!(
+            WholeTarget::check(&rattled_in, 1, 3),
+            WholeTarget {
+                pocketed: true,
+                jaw_contacts: 2,
+                in_the_way: None,
+                first: "pocket"
+            }
+        );
+        let turned_away = [
+            hit.clone(),
+            jaw(3),
+            event("cushion", &[1]),
+            event("rest", &[1]),
+        ];
+        assert_eq!(
+            WholeTarget::check(&turned_away, 1, 3),
+            WholeTarget {
+                pocketed: false,
+                jaw_contacts: 1,
+                in_the_way: None,
+                first: "cushion"
+            }
+        );
+        let other_jaw = [hit, jaw(2), drop(3)];
+        assert_eq!(
+            WholeTarget::check(&other_jaw, 1, 3),
+            WholeTarget {
+                pocketed: false,
+                jaw_contacts: 0,
+                in_the_way: None,
+                first: "cushion"
+            }
+        );
     }
 
     #[test]

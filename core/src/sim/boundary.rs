@@ -246,7 +246,7 @@ impl Boundary {
                             }
                             entered |= bit;
                         }
-                        None => consider(sigma, Edge::Cushion(line.normal)),
+                        None => consider(sigma, Edge::Cushion(line.normal, None)),
                     }
                 }
             }

@@ -8,9 +8,9 @@ use crate::vector::Vec3;
 /// What a crossing of the boundary is.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) enum Edge {
-    /// A cushion (a rail, a jaw's face or nose) whose horizontal unit normal at the
-    /// contact (into the cushion) is given.
-    Cushion(Vec3),
+    /// A cushion whose horizontal unit normal at the contact (into the cushion) is
+    /// given: a rail (`None`) or a jaw's face or nose (`Some` of its pocket's index).
+    Cushion(Vec3, Option<usize>),
     /// The pocket of that index in [`crate::table::Table::pockets`].
     Pocket(usize),
 }

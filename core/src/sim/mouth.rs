@@ -162,7 +162,7 @@ impl Mouth {
             if let Some(sigma) = face.line.crossing(state, span) {
                 let along = face.along.dot(position(state, sigma));
                 if along >= face.low && along <= face.high {
-                    consider(sigma, Edge::Cushion(face.line.normal));
+                    consider(sigma, Edge::Cushion(face.line.normal, Some(self.pocket)));
                 }
             }
         }
@@ -172,7 +172,10 @@ impl Mouth {
                 let towards = Vec3::new(nose.x - at.x, nose.y - at.y, 0.0);
                 let distance = towards.length();
                 if distance > 0.0 {
-                    consider(sigma, Edge::Cushion(towards * (1.0 / distance)));
+                    consider(
+                        sigma,
+                        Edge::Cushion(towards * (1.0 / distance), Some(self.pocket)),
+                    );
                 }
             }
         }

@@ -225,7 +225,7 @@ pub fn simulate(
             if let (time, Some(edge)) = ball.exit {
                 let kind = match edge {
                     Edge::Pocket(pocket) => EventKind::Pocket(pocket),
-                    Edge::Cushion(_) => EventKind::Cushion,
+                    Edge::Cushion(..) => EventKind::Cushion,
                 };
                 consider(time, kind, i, None);
             }
@@ -254,6 +254,8 @@ pub fn simulate(
             let motion = Motion::new(state.position, state.velocity, state.spin, radius, cloth)?;
             Ok(Track::new(motion, now, setup.spin_decay))
         };
+        // The pocket whose jaw a cushion event's cushion is.
+        let mut jaw = None;
         let happened = match (kind, other) {
             (EventKind::Ball, Some(j)) => {
                 let (a, b) = (state(&balls[i]), state(&balls[j]));
@@ -284,9 +286,10 @@ pub fn simulate(
             }
             (EventKind::Cushion, _) => {
                 let ball = &balls[i];
-                let Some(Edge::Cushion(normal)) = ball.exit.1 else {
+                let Some(Edge::Cushion(normal, pocket)) = ball.exit.1 else {
                     return Err(Error::NumericalFailure);
                 };
+                jaw = pocket;
                 let before = state(ball);
                 let approach = before.velocity.dot(normal);
                 if approach > 0.0 {
@@ -352,6 +355,7 @@ pub fn simulate(
                 ball: i,
                 other,
                 position,
+                jaw,
             };
             sink(&event, &Paths { balls: &balls });
         }

@@ -120,7 +120,7 @@ fn a_ball_rolled_into_a_corner_or_a_side_pocket_drops() {
 fn a_rail_away_from_the_pockets_is_a_cushion_with_its_normal() {
     let boundary = pool();
     let (_, edge, at) = first_edge(&boundary, [0.7, 0.6], [0.0, -2.0]).unwrap();
-    assert_eq!(edge, Edge::Cushion(Vec3::new(0.0, -1.0, 0.0)));
+    assert_eq!(edge, Edge::Cushion(Vec3::new(0.0, -1.0, 0.0), None));
     assert!((at.y - R).abs() < 1e-5);
 }
 
@@ -133,14 +133,14 @@ fn a_ball_into_a_far_jaw_meets_the_jaw_not_the_pocket() {
     // Along the y = 0 rail's nose line, one radius in plus 1 mm (it grazes no rail):
     // into the corner, where the jaw on the x = 0 rail stands in its way.
     let (_, edge, at) = first_edge(&boundary, [0.8, R + 0.001], [-2.0, 0.0]).unwrap();
-    let Edge::Cushion(normal) = edge else {
+    let Edge::Cushion(normal, Some(0)) = edge else {
         panic!("{edge:?} at {at:?}");
     };
     assert!(normal.x < -0.5 && normal.y != 0.0, "{normal:?} at {at:?}");
     // Across the side pocket's mouth at 15° to the rail, into its far (x > L/2) nose.
     let (sin, cos) = (15f32.to_radians().sin(), 15f32.to_radians().cos());
     let (_, edge, at) = first_edge(&boundary, [1.15, 0.06], [2.0 * cos, -2.0 * sin]).unwrap();
-    let Edge::Cushion(normal) = edge else {
+    let Edge::Cushion(normal, Some(4)) = edge else {
         panic!("{edge:?} at {at:?}");
     };
     assert!(at.x > 1.27 && at.y < R, "{at:?}");
