@@ -81,6 +81,20 @@ struct Ball {
     events_at_once: u16,
 }
 
+impl Ball {
+    /// Count an event of this ball at `now`; `true` once it has had more than
+    /// [`JAM_EVENTS`] at that very instant (it is jammed).
+    fn note_event(&mut self, now: f32) -> bool {
+        if self.last_event == now {
+            self.events_at_once = self.events_at_once.saturating_add(1);
+        } else {
+            self.last_event = now;
+            self.events_at_once = 1;
+        }
+        self.events_at_once > JAM_EVENTS
+    }
+}
+
 /// Play `stroke` on `scene` (the cue ball is ball 0) and simulate the whole table.
 /// `sink` sees every event as it happens, with the paths from it on.
 ///
@@ -329,24 +343,9 @@ pub fn simulate(
             }
         };
         if happened {
-            for ball in core::iter::once(i).chain(other) {
-                let b = &mut balls[ball];
-                b.events_at_once = if b.last_event == now {
-                    b.events_at_once.saturating_add(1)
-                } else {
-                    1
-                };
-                b.last_event = now;
-                if b.events_at_once > JAM_EVENTS {
-                    let (velocity, spin) = jam(b.track.spin_at(now));
-                    let at_rest = State {
-                        position: b.track.position_at(now),
-                        velocity,
-                        spin,
-                    };
-                    b.track = restart(&at_rest)?;
-                    dirty |= 1 << ball;
-                }
+            let jammed = balls[i].note_event(now) | other.is_some_and(|j| balls[j].note_event(now));
+            if jammed {
+                dirty |= stop_jammed(&mut balls, now, radius, cloth, setup.spin_decay)?;
             }
             events += 1;
             let event = Event {
@@ -383,6 +382,30 @@ fn pair_time(a: &Ball, b: &Ball, from: f32, reach: f32) -> f32 {
         b.exit.0
     };
     contact_time(&a.track, &b.track, from, reach, horizon).unwrap_or(f32::INFINITY)
+}
+
+/// Stop every ball that [`Ball::note_event`] found jammed ([`jam`]); returns their bits.
+#[cold]
+#[inline(never)]
+fn stop_jammed(
+    balls: &mut [Ball],
+    now: f32,
+    radius: f32,
+    cloth: &crate::travel::Cloth,
+    spin_decay: f32,
+) -> Result<u32> {
+    let mut stopped = 0;
+    for (index, ball) in balls.iter_mut().enumerate() {
+        if ball.last_event == now && ball.events_at_once > JAM_EVENTS {
+            let (velocity, spin) = jam(ball.track.spin_at(now));
+            let position = ball.track.position_at(now);
+            let motion = Motion::new(position, velocity, spin, radius, cloth)?;
+            ball.track = Track::new(motion, now, spin_decay);
+            ball.events_at_once = 0;
+            stopped |= 1 << index;
+        }
+    }
+    Ok(stopped)
 }
 
 /// A moment after `t` (s): 1 µs, or a millionth of `t` where that is more (its f32

@@ -44,63 +44,61 @@ fn first_edge(
 /// (`jaw_end`) by the vector construction, to f32 rounding.
 #[test]
 fn noses_sit_where_pooltools_layout_puts_them() {
-    let boundary = pool();
-    let (corner_mouth, side_mouth) = (0.116f64, 0.13f64);
-    let ca = (45.0 + f64::from(Jaws::POOL.corner.angle)).to_radians();
-    let rc = f64::from(Jaws::POOL.corner.nose_radius);
-    let dc = rc / ((core::f64::consts::FRAC_PI_2 + ca) / 2.0).tan();
-    let sa = f64::from(Jaws::POOL.side.angle).to_radians();
-    let rs = f64::from(Jaws::POOL.side.nose_radius);
-    let ds = rs / ((core::f64::consts::FRAC_PI_2 + sa) / 2.0).tan();
-    let along_rail = corner_mouth * core::f64::consts::FRAC_1_SQRT_2 + dc;
-    // Pocket 0 is the corner at the origin: its noses behind the y = 0 rail and the
-    // x = 0 rail.
-    let corner = &boundary.mouths[0];
-    let expected = [(along_rail, -rc), (-rc, along_rail)];
-    for (nose, (x, y)) in corner.noses.iter().zip(expected) {
-        assert!(
-            (f64::from(nose.x) - x).abs() < 1e-6,
-            "{nose:?} vs ({x}, {y})"
-        );
-        assert!(
-            (f64::from(nose.y) - y).abs() < 1e-6,
-            "{nose:?} vs ({x}, {y})"
-        );
-    }
-    // Pocket 4 is the side pocket on the y = 0 rail, at x = L/2.
-    let side = boundary.mouths.iter().find(|m| m.pocket == 4).unwrap();
-    let half_length = 0.5 * f64::from(Table::pool().length());
-    let expected = [
-        (half_length - side_mouth / 2.0 - ds, -rs),
-        (half_length + side_mouth / 2.0 + ds, -rs),
+    // Pool, and snooker (pooltool's own snooker jaws; our mouths).
+    let tables = [
+        (Table::pool(), Jaws::POOL, R, 0.116f64, 0.13f64),
+        (
+            Table::snooker(),
+            Jaws::SNOOKER,
+            BallSet::SNOOKER.radius,
+            0.086,
+            0.095,
+        ),
     ];
-    for (nose, (x, y)) in side.noses.iter().zip(expected) {
-        assert!(
-            (f64::from(nose.x) - x).abs() < 1e-6,
-            "{nose:?} vs ({x}, {y})"
-        );
-        assert!(
-            (f64::from(nose.y) - y).abs() < 1e-6,
-            "{nose:?} vs ({x}, {y})"
-        );
-    }
-    // Each face's line (one radius off) is tangent to its nose grown by the radius: the
-    // nose's centre is `R + ρ` from the centre's line... i.e. `ρ` from the face.
-    for mouth in [corner, side] {
-        for (face, nose) in mouth.faces.iter().zip(&mouth.noses) {
-            let distance = face.line.offset - face.line.normal.dot(*nose);
-            assert!(
-                (distance + mouth.nose_reach).abs() < 1e-6,
-                "{distance} vs {}",
-                mouth.nose_reach
-            );
+    for (table, jaws, radius, corner_mouth, side_mouth) in tables {
+        let boundary = Boundary::new(&table, &jaws, radius);
+        let ca = (45.0 + f64::from(jaws.corner.angle)).to_radians();
+        let rc = f64::from(jaws.corner.nose_radius);
+        let dc = rc / ((core::f64::consts::FRAC_PI_2 + ca) / 2.0).tan();
+        let sa = f64::from(jaws.side.angle).to_radians();
+        let rs = f64::from(jaws.side.nose_radius);
+        let ds = rs / ((core::f64::consts::FRAC_PI_2 + sa) / 2.0).tan();
+        let along_rail = corner_mouth * core::f64::consts::FRAC_1_SQRT_2 + dc;
+        let at = |nose: &Vec3, (x, y): (f64, f64)| {
+            let off = (f64::from(nose.x) - x)
+                .abs()
+                .max((f64::from(nose.y) - y).abs());
+            assert!(off < 1e-6, "{nose:?} vs ({x}, {y})");
+        };
+        // Pocket 0 is the corner at the origin: its noses behind the y = 0 rail and
+        // the x = 0 rail.
+        let corner = &boundary.mouths[0];
+        at(&corner.noses[0], (along_rail, -rc));
+        at(&corner.noses[1], (-rc, along_rail));
+        // Pocket 4 is the side pocket on the y = 0 rail, at x = L/2.
+        let side = boundary.mouths.iter().find(|m| m.pocket == 4).unwrap();
+        let half_length = 0.5 * f64::from(table.length());
+        at(&side.noses[0], (half_length - side_mouth / 2.0 - ds, -rs));
+        at(&side.noses[1], (half_length + side_mouth / 2.0 + ds, -rs));
+        // Each face's line (one radius off) is tangent to its nose grown by the
+        // radius: the nose's centre is `R + ρ` beyond the centre's line.
+        for mouth in [corner, side] {
+            for (face, nose) in mouth.faces.iter().zip(&mouth.noses) {
+                let distance = face.line.offset - face.line.normal.dot(*nose);
+                assert!(
+                    (distance + mouth.nose_reach).abs() < 1e-6,
+                    "{distance} vs {}",
+                    mouth.nose_reach
+                );
+            }
         }
+        // Pockets' circles: pooltool's `(−cd/√2, −cd/√2)` and `(−sd, l/2)` (ours:
+        // y = −sd).
+        let cd = f64::from(jaws.corner.depth) * core::f64::consts::FRAC_1_SQRT_2;
+        assert!((f64::from(corner.centre.x) + cd).abs() < 1e-7);
+        assert!((f64::from(corner.centre.y) + cd).abs() < 1e-7);
+        assert!((f64::from(side.centre.y) + f64::from(jaws.side.depth)).abs() < 1e-7);
     }
-    // Pockets' circles: pooltool's `(−cd/√2, −cd/√2)` and `(−sd, l/2)` (ours: y = −sd).
-    let cd = f64::from(Jaws::POOL.corner.depth) * core::f64::consts::FRAC_1_SQRT_2;
-    assert!((f64::from(corner.centre.x) + cd).abs() < 1e-7);
-    assert!((f64::from(corner.centre.y) + cd).abs() < 1e-7);
-    assert!((f64::from(side.centre.y) + f64::from(Jaws::POOL.side.depth)).abs() < 1e-7);
 }
 
 #[test]
